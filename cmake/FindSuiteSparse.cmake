@@ -1,0 +1,18 @@
+# Finds the SuiteSparse libraries weavelab uses (CHOLMOD, UMFPACK) from Debian's
+# libsuitesparse-dev, which ships headers and libraries but no CMake config.
+# Defines SuiteSparse::CHOLMOD and SuiteSparse::UMFPACK.
+find_path(SuiteSparse_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)
+find_library(SuiteSparse_CHOLMOD_LIBRARY cholmod)
+find_library(SuiteSparse_UMFPACK_LIBRARY umfpack)
+find_library(SuiteSparse_CONFIG_LIBRARY suitesparseconfig)
+include(FindPackageHandleStandardArgs)
+find_package_handle_standard_args(SuiteSparse REQUIRED_VARS
+  SuiteSparse_INCLUDE_DIR SuiteSparse_CHOLMOD_LIBRARY SuiteSparse_UMFPACK_LIBRARY SuiteSparse_CONFIG_LIBRARY)
+if(SuiteSparse_FOUND AND NOT TARGET SuiteSparse::CHOLMOD)
+  add_library(SuiteSparse::CHOLMOD UNKNOWN IMPORTED)
+  set_target_properties(SuiteSparse::CHOLMOD PROPERTIES IMPORTED_LOCATION "${SuiteSparse_CHOLMOD_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${SuiteSparse_INCLUDE_DIR}" INTERFACE_LINK_LIBRARIES "${SuiteSparse_CONFIG_LIBRARY}")
+  add_library(SuiteSparse::UMFPACK UNKNOWN IMPORTED)
+  set_target_properties(SuiteSparse::UMFPACK PROPERTIES IMPORTED_LOCATION "${SuiteSparse_UMFPACK_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${SuiteSparse_INCLUDE_DIR}" INTERFACE_LINK_LIBRARIES "${SuiteSparse_CONFIG_LIBRARY}")
+endif()

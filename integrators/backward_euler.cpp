@@ -1,0 +1,143 @@
+#include "integrators/backward_euler.h"
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+namespace wl {
+namespace {
+
+void zero_fixed(Vec& x, const std::vector<int>& fixed) {
+  for (int i : fixed) x[i] = 0.0;
+}
+
+}  // namespace
+
+void BackwardEuler::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
+  model_ = &model;
+  opt_ = opt;
+  t_ = t0;
+  q_ = q0;
+  v_ = v0;
+  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
+  zero_fixed(v_, fixed_);
+  allocate_evaluation(model, ev_);
+  a_ = model.pattern();
+  solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs());
+  stats_ = {};
+}
+
+void BackwardEuler::form_step_matrix(double h) {
+  const int nnz = static_cast<int>(a_.nonZeros());
+  const double* m = ev_.mass.valuePtr();
+  const double* k = ev_.dfdq.valuePtr();
+  const double* d = ev_.dfdv.valuePtr();
+  double* a = a_.valuePtr();
+  const double h2 = h * h;
+  for (int i = 0; i < nnz; ++i) a[i] = m[i] - h * d[i] - h2 * k[i];
+}
+
+StepResult BackwardEuler::step_linear(double h, int* iters) {
+  model_->evaluate(t_, q_, v_, kForce | kDfdq | kDfdv | kMass, ev_);
+  ++stats_.rhs_evals;
+  ++stats_.jac_evals;
+  form_step_matrix(h);
+  ++stats_.linear_setups;
+  if (!solver_->factorize(a_)) return {Outcome::diverged, "singular step matrix"};
+  Vec rhs = h * (ev_.force + h * (ev_.dfdq * v_));
+  Vec dv;
+  solver_->solve(rhs, dv);
+  ++stats_.linear_solves;
+  v_ += dv;
+  zero_fixed(v_, fixed_);
+  q_ += h * v_;
+  *iters = 1;
+  return {};
+}
+
+StepResult BackwardEuler::step_newton(double h, int* iters) {
+  const Vec q0 = q_, v0 = v_;
+  // M(q₀) and the first Jacobian come from the start of the step.
+  model_->evaluate(t_, q0, v0, kForce | kDfdq | kDfdv | kMass, ev_);
+  ++stats_.rhs_evals;
+  ++stats_.jac_evals;
+  const SparseMatrix m0 = ev_.mass;
+  Vec v = v0;
+  auto residual = [&](const Vec& vv, Vec& g) {
+    g = m0 * (vv - v0) - h * ev_.force;
+    zero_fixed(g, fixed_);
+  };
+  Vec g;
+  residual(v, g);  // ev_ holds f(q0, v0) = f(q0 + h v, v) only if v == v0... re-evaluate at the guess:
+  model_->evaluate(t_ + h, q0 + h * v, v, kForce | kDfdq | kDfdv, ev_);
+  ++stats_.rhs_evals;
+  ++stats_.jac_evals;
+  residual(v, g);
+  const double g0 = std::max(g.norm(), 1e-300);
+  for (int it = 1; it <= opt_.newton_max_iters; ++it) {
+    ev_.mass = m0;
+    form_step_matrix(h);
+    ++stats_.linear_setups;
+    if (!solver_->factorize(a_)) return {Outcome::diverged, "singular Newton matrix"};
+    Vec dv;
+    solver_->solve(-g, dv);
+    ++stats_.linear_solves;
+    ++stats_.nonlinear_iters;
+    // Backtracking line search on ‖G‖.
+    const double gn = g.norm();
+    double alpha = 1.0;
+    Vec v_try, g_try;
+    for (int ls = 0; ls < 10; ++ls) {
+      v_try = v + alpha * dv;
+      model_->evaluate(t_ + h, q0 + h * v_try, v_try, kForce | kDfdq | kDfdv, ev_);
+      ++stats_.rhs_evals;
+      ++stats_.jac_evals;
+      residual(v_try, g_try);
+      if (g_try.norm() <= (1.0 - 1e-4 * alpha) * gn || ls == 9) break;
+      alpha *= 0.5;
+    }
+    v = v_try;
+    g = g_try;
+    *iters = it;
+    const double vscale = 1.0 + v.lpNorm<Eigen::Infinity>();
+    if (!g.allFinite()) return {Outcome::nan, "NaN in Newton residual"};
+    if (alpha * dv.lpNorm<Eigen::Infinity>() <= opt_.newton_tol * vscale || g.norm() <= opt_.newton_tol * g0) {
+      v_ = v;
+      zero_fixed(v_, fixed_);
+      q_ = q0 + h * v_;
+      return {};
+    }
+  }
+  return {Outcome::diverged, "Newton did not converge in " + std::to_string(opt_.newton_max_iters) + " iterations"};
+}
+
+StepResult BackwardEuler::step(double h) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  int iters = 0;
+  StepResult r = variant_ == Variant::linear ? step_linear(h, &iters) : step_newton(h, &iters);
+  if (r.outcome == Outcome::ok) r = check_state(q_, v_, opt_);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  stats_.wall_s += wall;
+  stats_.cpu_s += double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  if (r.outcome != Outcome::ok) return r;
+  t_ += h;
+  ++stats_.steps;
+  model_->accept_step(t_, q_, v_, h);
+  if (on_step) on_step({t_, h, iters, wall});
+  return r;
+}
+
+StepResult BackwardEuler::advance_to(double t_out) {
+  while (t_out - t_ > 1e-9 * opt_.dt) {
+    if (stats_.steps >= opt_.max_steps) return {Outcome::max_steps, "step limit reached"};
+    double h = std::min(opt_.dt, t_out - t_);
+    if (t_out - t_ - h < 1e-9 * opt_.dt) h = t_out - t_;
+    StepResult r = step(h);
+    if (r.outcome != Outcome::ok) return r;
+  }
+  t_ = t_out;
+  return {};
+}
+
+}  // namespace wl

@@ -1,0 +1,79 @@
+// The Integrator interface: advances a Model through time knowing nothing of
+// yarns or triangles (design.md "Core abstractions"). Every integrator reports
+// the same statistics and ends in a structured outcome instead of aborting.
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "models/core/model.h"
+
+namespace wl {
+
+enum class Outcome { ok, diverged, nan, step_too_small, max_steps, not_offered };
+const char* to_string(Outcome o);
+
+struct IntegratorStats {
+  long steps = 0;
+  long rejected_steps = 0;
+  long rhs_evals = 0;        // force evaluations
+  long jac_evals = 0;        // Jacobian (∂f/∂q, ∂f/∂v) evaluations
+  long linear_setups = 0;    // numeric factorizations
+  long linear_solves = 0;
+  long nonlinear_iters = 0;  // Newton iterations (implicit methods)
+  double wall_s = 0.0;
+  double cpu_s = 0.0;
+};
+
+struct IntegratorOptions {
+  double dt = 1e-3;          // fixed step, or initial step when adaptive [s]
+  bool adaptive = false;
+  double rtol = 1e-6;
+  double atol = 1e-9;
+  long max_steps = 10000000;  // over the whole run
+  double min_step = 1e-12;    // [s]
+  // Newton (implicit methods)
+  double newton_tol = 1e-8;   // relative residual / update tolerance
+  int newton_max_iters = 20;
+  // A state whose max |v| exceeds this is a divergence [m/s].
+  double runaway_speed = 1e4;
+};
+
+// One accepted step, for metrics and progress.
+struct StepRecord {
+  double t = 0.0;
+  double h = 0.0;
+  int nonlinear_iters = 0;
+  double wall_s = 0.0;
+};
+
+struct StepResult {
+  Outcome outcome = Outcome::ok;
+  std::string message;  // filled when outcome != ok
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual std::string name() const = 0;
+  // Binds the model and the initial state (t0, q0, v0).
+  virtual void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) = 0;
+  // Advances to exactly t_out (stepping or interpolating as the method does).
+  virtual StepResult advance_to(double t_out) = 0;
+  virtual double t() const = 0;
+  virtual const Vec& q() const = 0;
+  virtual const Vec& v() const = 0;
+  virtual const IntegratorStats& stats() const = 0;
+  std::function<void(const StepRecord&)> on_step;  // called after each accepted step
+};
+
+// Names accepted by make_integrator, in documentation order.
+std::vector<std::string> integrator_names();
+// Creates an integrator by name; throws std::invalid_argument for an unknown name.
+std::unique_ptr<Integrator> make_integrator(const std::string& name);
+
+// Checks a state for NaN/Inf and runaway speed; used by every integrator.
+StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt);
+
+}  // namespace wl

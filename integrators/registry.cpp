@@ -1,0 +1,40 @@
+#include <cmath>
+#include <stdexcept>
+
+#include "integrators/backward_euler.h"
+#include "integrators/integrator.h"
+
+namespace wl {
+
+const char* to_string(Outcome o) {
+  switch (o) {
+    case Outcome::ok: return "ok";
+    case Outcome::diverged: return "diverged";
+    case Outcome::nan: return "nan";
+    case Outcome::step_too_small: return "step_too_small";
+    case Outcome::max_steps: return "max_steps";
+    case Outcome::not_offered: return "not_offered";
+  }
+  return "unknown";
+}
+
+StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) {
+  if (!q.allFinite() || !v.allFinite()) return {Outcome::nan, "NaN or Inf in the state"};
+  const double vmax = v.lpNorm<Eigen::Infinity>();
+  if (vmax > opt.runaway_speed)
+    return {Outcome::diverged, "runaway state: max |v| = " + std::to_string(vmax) + " exceeds " +
+                                   std::to_string(opt.runaway_speed)};
+  return {};
+}
+
+std::vector<std::string> integrator_names() { return {"be-linear", "be-newton"}; }
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name) {
+  if (name == "be-linear") return std::make_unique<BackwardEuler>(BackwardEuler::Variant::linear);
+  if (name == "be-newton") return std::make_unique<BackwardEuler>(BackwardEuler::Variant::newton);
+  std::string known;
+  for (auto& n : integrator_names()) known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown integrator '" + name + "' (expected one of: " + known + ")");
+}
+
+}  // namespace wl

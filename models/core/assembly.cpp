@@ -1,0 +1,184 @@
+#include "models/core/assembly.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace wl {
+namespace {
+
+constexpr int kParallelMinElements = 4096;  // below this a colour is evaluated serially
+
+// Greedy colouring: an element gets the first colour not used by any element
+// sharing a DoF with it.
+std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colours) {
+  const int ne = term.num_elements();
+  std::vector<int> colour(ne, -1);
+  std::vector<std::vector<int>> dof_colours(num_dofs);
+  int max_colour = 0;
+  for (int e = 0; e < ne; ++e) {
+    unsigned long long used = 0;
+    for (int i : term.stencil(e))
+      if (is_dof(i))
+        for (int c : dof_colours[i]) used |= 1ull << c;
+    int c = 0;
+    while (used & (1ull << c)) ++c;
+    if (c >= 64) throw std::logic_error("assembly: term '" + term.name() + "' needs more than 64 colours");
+    colour[e] = c;
+    max_colour = std::max(max_colour, c + 1);
+    for (int i : term.stencil(e))
+      if (is_dof(i)) dof_colours[i].push_back(c);
+  }
+  *num_colours = max_colour;
+  return colour;
+}
+
+}  // namespace
+
+Assembly::Assembly(int num_dofs, std::vector<Term*> terms) : num_dofs_(num_dofs) {
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  for (int i = 0; i < num_dofs; ++i) triplets.emplace_back(i, i, 0.0);
+  for (Term* t : terms) {
+    for (int e = 0; e < t->num_elements(); ++e) {
+      auto s = t->stencil(e);
+      if (static_cast<int>(s.size()) != t->stencil_size())
+        throw std::logic_error("assembly: stencil size mismatch in term '" + t->name() + "'");
+      for (int a : s)
+        for (int b : s)
+          if (is_dof(a) && is_dof(b)) {
+            if (a >= num_dofs || b >= num_dofs)
+              throw std::logic_error("assembly: DoF index out of range in term '" + t->name() + "'");
+            triplets.emplace_back(a, b, 0.0);
+          }
+    }
+  }
+  pattern_.resize(num_dofs, num_dofs);
+  pattern_.setFromTriplets(triplets.begin(), triplets.end());
+  pattern_.makeCompressed();
+  for (int k = 0; k < pattern_.nonZeros(); ++k) pattern_.valuePtr()[k] = 0.0;
+
+  const int* outer = pattern_.outerIndexPtr();
+  const int* inner = pattern_.innerIndexPtr();
+  auto slot_of = [&](int row, int col) {
+    const int* begin = inner + outer[col];
+    const int* end = inner + outer[col + 1];
+    return static_cast<int>(std::lower_bound(begin, end, row) - inner);
+  };
+
+  for (Term* t : terms) {
+    TermPlan plan;
+    plan.term = t;
+    plan.n = t->stencil_size();
+    const int ne = t->num_elements();
+    int nc = 0;
+    std::vector<int> colour = colour_elements(*t, num_dofs, &nc);
+    plan.colour_start.assign(nc + 1, 0);
+    for (int c : colour) ++plan.colour_start[c + 1];
+    for (int c = 0; c < nc; ++c) plan.colour_start[c + 1] += plan.colour_start[c];
+    plan.order.resize(ne);
+    std::vector<int> fill(plan.colour_start.begin(), plan.colour_start.end() - 1);
+    for (int e = 0; e < ne; ++e) plan.order[fill[colour[e]]++] = e;
+    const int n = plan.n;
+    plan.slots.assign(static_cast<size_t>(ne) * n * n, -1);
+    for (int e = 0; e < ne; ++e) {
+      auto s = t->stencil(e);
+      for (int b = 0; b < n; ++b)
+        for (int a = 0; a < n; ++a)
+          if (is_dof(s[a]) && is_dof(s[b])) plan.slots[(static_cast<size_t>(e) * n + b) * n + a] = slot_of(s[a], s[b]);
+    }
+    plans_.push_back(std::move(plan));
+  }
+}
+
+void Assembly::add_stage(int stage, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
+                         Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const {
+  for (const TermPlan& plan : plans_)
+    if (plan.term->stage() == stage) add_term(plan, q, v, constants, req, f, dfdq, dfdv, mass);
+}
+
+void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const Vec& constants,
+                        const AssemblyRequest& req, Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv,
+                        SparseMatrix* mass) const {
+  const Term& term = *plan.term;
+  const int n = plan.n;
+  const bool want_k = req.dfdq && dfdq;
+  const bool want_d = req.dfdv && dfdv && term.has_velocity_jacobian();
+  const bool want_m = req.mass && mass && term.provides_mass();
+  double* kv = want_k ? dfdq->valuePtr() : nullptr;
+  double* dv = want_d ? dfdv->valuePtr() : nullptr;
+  double* mv = want_m ? mass->valuePtr() : nullptr;
+
+  auto run_range = [&](int begin, int end) {
+    std::vector<double> buf(static_cast<size_t>(2 * n + 3 * n * n));
+    double* ql = buf.data();
+    double* vl = ql + n;
+    double* fl = vl + n;
+    double* kl = fl + n;
+    double* dl = kl + n * n;
+    double* ml = dl + n * n;
+    ElementOutput out{fl, want_k ? kl : nullptr, want_d ? dl : nullptr, want_m ? ml : nullptr};
+    for (int k = begin; k < end; ++k) {
+      const int e = plan.order[k];
+      auto s = term.stencil(e);
+      for (int a = 0; a < n; ++a) {
+        const int i = s[a];
+        ql[a] = is_dof(i) ? q[i] : constants[constant_slot(i)];
+        vl[a] = is_dof(i) ? v[i] : 0.0;
+      }
+      std::fill(fl, fl + n + 3 * n * n, 0.0);
+      term.evaluate(e, ql, vl, out);
+      for (int a = 0; a < n; ++a)
+        if (is_dof(s[a])) f[s[a]] += fl[a];
+      const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;
+      for (int ab = 0; ab < n * n; ++ab) {
+        const int sl = slots[ab];
+        if (sl < 0) continue;
+        if (kv) kv[sl] += kl[ab];
+        if (dv) dv[sl] += dl[ab];
+        if (mv) mv[sl] += ml[ab];
+      }
+    }
+  };
+
+  const int num_colours = static_cast<int>(plan.colour_start.size()) - 1;
+  for (int c = 0; c < num_colours; ++c) {
+    const int begin = plan.colour_start[c], end = plan.colour_start[c + 1];
+    if (end - begin < kParallelMinElements) {
+      run_range(begin, end);
+      continue;
+    }
+#pragma omp parallel
+    {
+      int tid = 0, nt = 1;
+#ifdef _OPENMP
+      tid = omp_get_thread_num();
+      nt = omp_get_num_threads();
+#endif
+      const int len = end - begin;
+      const int lo = begin + static_cast<int>(static_cast<long long>(len) * tid / nt);
+      const int hi = begin + static_cast<int>(static_cast<long long>(len) * (tid + 1) / nt);
+      run_range(lo, hi);
+    }
+  }
+}
+
+double Assembly::energy(const Vec& q, const Vec& constants) const {
+  double total = 0.0;
+  std::vector<double> ql;
+  for (const TermPlan& plan : plans_) {
+    const Term& term = *plan.term;
+    if (!term.conservative()) continue;
+    ql.resize(plan.n);
+    for (int e = 0; e < term.num_elements(); ++e) {
+      auto s = term.stencil(e);
+      for (int a = 0; a < plan.n; ++a) ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
+      total += term.energy(e, ql.data());
+    }
+  }
+  return total;
+}
+
+}  // namespace wl

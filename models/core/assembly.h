@@ -1,0 +1,54 @@
+// One shared assembly for every model (design.md "Core abstractions"): gathers
+// each element's local state, calls its term and scatters the result into a
+// global force vector and matrices that share one sparsity pattern (computed
+// once). Elements of a term are coloured so that no two elements of a colour
+// touch the same DoF; a colour is evaluated in parallel without locks and the
+// summation order is fixed, so results are bitwise reproducible.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "models/core/term.h"
+
+namespace wl {
+
+struct AssemblyRequest {
+  bool dfdq = false;
+  bool dfdv = false;
+  bool mass = false;
+};
+
+class Assembly {
+ public:
+  Assembly(int num_dofs, std::vector<Term*> terms);
+
+  int num_dofs() const { return num_dofs_; }
+  // Pattern shared by mass, ∂f/∂q and ∂f/∂v: the union of all stencil blocks
+  // plus the full diagonal. Values are zero.
+  const SparseMatrix& pattern() const { return pattern_; }
+
+  // Adds the contributions of every term of the given stage to f and, where
+  // requested, to the matrices (which must have pattern()'s structure).
+  void add_stage(int stage, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
+                 Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const;
+
+  // Potential energy of all conservative terms.
+  double energy(const Vec& q, const Vec& constants) const;
+
+ private:
+  struct TermPlan {
+    Term* term;
+    int n;
+    std::vector<int> colour_start;  // elements sorted by colour: order[colour_start[c] .. colour_start[c+1])
+    std::vector<int> order;
+    std::vector<int> slots;  // per element n*n value indices into pattern_ (-1 where no DoF)
+  };
+  void add_term(const TermPlan& plan, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
+                Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const;
+
+  int num_dofs_;
+  SparseMatrix pattern_;
+  std::vector<TermPlan> plans_;
+};
+
+}  // namespace wl

@@ -1,0 +1,63 @@
+// The Model interface: everything an integrator may know about a simulated
+// system (design.md "Core abstractions"). Generalized coordinates q and
+// velocities v live in contiguous vectors; mass, ∂f/∂q and ∂f/∂v share one
+// fixed sparsity pattern; f includes inertial forces where M depends on q.
+#pragma once
+#include <map>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "models/core/frame.h"
+#include "models/core/types.h"
+
+namespace wl {
+
+enum EvalFlags : unsigned {
+  kForce = 1u,
+  kDfdq = 2u,
+  kDfdv = 4u,
+  kMass = 8u,
+};
+
+struct Evaluation {
+  Vec force;          // f(t, q, v), generalized
+  SparseMatrix dfdq;  // ∂f/∂q
+  SparseMatrix dfdv;  // ∂f/∂v
+  SparseMatrix mass;  // M(q)
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+  virtual std::string name() const = 0;
+  virtual int num_dofs() const = 0;
+  virtual Vec initial_q() const = 0;
+  virtual Vec initial_v() const = 0;
+  // DoFs held fixed (pinned): the integrators keep their q and v unchanged and
+  // remove them from every solve.
+  virtual std::span<const int> fixed_dofs() const = 0;
+  // Whether M depends on q (then f contains ∂T/∂q − Ṁq̇, physics.md §2).
+  virtual bool mass_depends_on_q() const = 0;
+
+  // Sparsity shared by mass, dfdq and dfdv (fixed for the model's lifetime).
+  virtual const SparseMatrix& pattern() const = 0;
+  // Fills what `flags` asks for; matrices keep pattern()'s structure.
+  virtual void evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) = 0;
+  // Potential energy of the conservative terms.
+  virtual double potential_energy(const Vec& q) const = 0;
+  // History update after an accepted step of size h ending at (t, q, v).
+  virtual void accept_step(double t, const Vec& q, const Vec& v, double h) = 0;
+
+  // Output frame for the writers; `ev` holds a force evaluation at (t, q, v).
+  virtual Frame frame(double t, const Vec& q, const Vec& v) = 0;
+  // Short facts for `weavelab info` and the run summary (name -> value).
+  virtual std::map<std::string, std::string> describe() const = 0;
+};
+
+// Prepares `out` with pattern-shaped matrices and a sized force vector.
+void allocate_evaluation(const Model& model, Evaluation& out);
+// Kinetic energy ½ vᵀ M(q) v.
+double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v);
+
+}  // namespace wl

@@ -1,0 +1,61 @@
+#include "models/core/term_model.h"
+
+#include <algorithm>
+
+namespace wl {
+
+void allocate_evaluation(const Model& model, Evaluation& out) {
+  out.force = Vec::Zero(model.num_dofs());
+  out.dfdq = model.pattern();
+  out.dfdv = model.pattern();
+  out.mass = model.pattern();
+}
+
+double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v) {
+  Evaluation ev;
+  allocate_evaluation(model, ev);
+  model.evaluate(t, q, v, kMass, ev);
+  return 0.5 * v.dot(ev.mass * v);
+}
+
+void TermModel::finalize() {
+  std::vector<Term*> raw;
+  for (auto& t : terms_) raw.push_back(t.get());
+  assembly_ = std::make_unique<Assembly>(num_dofs_, raw);
+  std::sort(fixed_.begin(), fixed_.end());
+  fixed_.erase(std::unique(fixed_.begin(), fixed_.end()), fixed_.end());
+}
+
+void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) {
+  if (out.force.size() != num_dofs_) allocate_evaluation(*this, out);
+  out.force.setZero();
+  AssemblyRequest req{(flags & kDfdq) != 0, (flags & kDfdv) != 0, (flags & kMass) != 0};
+  auto zero = [](SparseMatrix& m) { std::fill(m.valuePtr(), m.valuePtr() + m.nonZeros(), 0.0); };
+  if (req.dfdq) zero(out.dfdq);
+  if (req.dfdv) zero(out.dfdv);
+  if (req.mass) zero(out.mass);
+
+  EvalContext ctx{t, &q, &v, nullptr};
+  bool has_stage1 = false;
+  for (auto& term : terms_) {
+    if (term->stage() == 0) term->prepare(ctx);
+    else has_stage1 = true;
+  }
+  assembly_->add_stage(0, q, v, constants_, req, out.force, &out.dfdq, &out.dfdv, &out.mass);
+  if (has_stage1) {
+    stage0_force_ = out.force;
+    ctx.force_so_far = &stage0_force_;
+    for (auto& term : terms_)
+      if (term->stage() == 1) term->prepare(ctx);
+    assembly_->add_stage(1, q, v, constants_, req, out.force, &out.dfdq, &out.dfdv, &out.mass);
+  }
+}
+
+double TermModel::potential_energy(const Vec& q) const { return assembly_->energy(q, constants_); }
+
+void TermModel::accept_step(double t, const Vec& q, const Vec& v, double h) {
+  EvalContext ctx{t, &q, &v, nullptr};
+  for (auto& term : terms_) term->accept_step(ctx, h);
+}
+
+}  // namespace wl

@@ -1,0 +1,41 @@
+// A Model that is a list of Terms assembled by the shared Assembly. The yarn
+// and FEM models derive from it and only build their terms and frames.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "models/core/assembly.h"
+#include "models/core/model.h"
+
+namespace wl {
+
+class TermModel : public Model {
+ public:
+  int num_dofs() const override { return num_dofs_; }
+  Vec initial_q() const override { return q0_; }
+  Vec initial_v() const override { return v0_; }
+  std::span<const int> fixed_dofs() const override { return fixed_; }
+  const SparseMatrix& pattern() const override { return assembly_->pattern(); }
+  void evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) override;
+  double potential_energy(const Vec& q) const override;
+  void accept_step(double t, const Vec& q, const Vec& v, double h) override;
+
+  const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
+  const Vec& constants() const { return constants_; }
+
+ protected:
+  // Derived constructors fill num_dofs_, q0_, v0_, fixed_, constants_ and
+  // terms_, then call finalize().
+  void finalize();
+
+  int num_dofs_ = 0;
+  Vec q0_, v0_, constants_;
+  std::vector<int> fixed_;
+  std::vector<std::unique_ptr<Term>> terms_;
+
+ private:
+  std::unique_ptr<Assembly> assembly_;
+  Vec stage0_force_;
+};
+
+}  // namespace wl

@@ -1,0 +1,36 @@
+// The one generic finite-difference checker (design.md "Testing habits"):
+// central differences of a term's element at given local states. Checks
+//   force at v = 0 against −∂energy/∂q (conservative terms),
+//   ∂f/∂q  against differences of force in q,
+//   ∂f/∂v  against differences of force in v (terms with velocity Jacobians).
+// The term must already be prepared (auxiliary quantities frozen).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "models/core/term.h"
+
+namespace wl::test {
+
+struct LocalState {
+  std::vector<double> q, v;
+};
+
+struct FdOptions {
+  double step = 1e-7;   // absolute perturbation of a local coordinate
+  double rtol = 1e-5;   // relative error allowed (Frobenius norms)
+  double floor = 1e-10; // absolute scale below which quantities count as zero
+};
+
+struct FdReport {
+  bool ok = true;
+  double force_error = 0.0;  // worst relative errors over the states
+  double dfdq_error = 0.0;
+  double dfdv_error = 0.0;
+  std::string detail;        // what failed, where
+};
+
+FdReport check_element(const Term& term, int element, const std::vector<LocalState>& states,
+                       const FdOptions& opt = {});
+
+}  // namespace wl::test
