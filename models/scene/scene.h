@@ -1,0 +1,121 @@
+// A validated scene in SI units (design.md "Data flow"). Produced from a TOML
+// file by load_scene(); every field has its unit in its name or comment.
+#pragma once
+#include <array>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace wl {
+
+struct YarnType {
+  double density_kg_per_m = 0.002;        // linear density ρ
+  double stretch_modulus_Pa = 5e5;        // Y, k_s = Y·πR² (physics.md §3.1)
+  double bending_modulus_Pa = 1.4e-4;     // B, k_b = B·πR² (physics.md §3.2)
+};
+
+struct Pattern {
+  enum class Kind { plain, twill, satin } kind = Kind::plain;
+  int twill_over = 2, twill_under = 2, twill_shift = 1;  // n/m twill, shift per row
+  int satin_harness = 5, satin_step = 2;                 // N-harness satin, step k
+};
+
+struct ContactParams {
+  enum class ShearModel { cirio, gong } shear_model = ShearModel::gong;
+  enum class FrictionModel { gong, cirio } friction_model = FrictionModel::gong;
+  double shear_modulus_Pa = 1000.0;  // S; Gong k_sh = S·πR²(1+F_n)·lock, Cirio k_x = S·πR²
+  double friction_coefficient = 0.5;       // μ
+  double friction_stiffness_N_per_m = 1000.0;   // k_f
+  double friction_damping_Ns_per_m = 1000.0;    // d_f
+  double tanh_sharpness_per_m = 10.0;           // p in K(x) = tanh(p x) (App. A uses 10)
+  double parallel_stiffness_N_per_m2 = 1.0;     // k_c, V = ½ k_c L ReLU(d − Δu)²
+  double lock_exponent = 3.0;                   // c
+  double lock_sigma = 0.6;                      // σ
+};
+
+struct NodeRef {
+  int i = 0, j = 0;  // i along the warp (material u), j along the weft (material v)
+};
+
+struct Handle {
+  NodeRef node;
+  double stiffness_N_per_m = 1e4;
+};
+
+struct FemSettings {
+  int stride = 1;                         // vertices every `stride`-th crossing
+  std::string mesh_file;                  // optional VTU with per-vertex rest UV ("" = build from the grid)
+  std::string parameter_file;             // optional calibrated parameters ("" = [fem] values / defaults)
+  std::optional<double> areal_density_kg_per_m2;
+  std::optional<double> warp_stretch_N_per_m, weft_stretch_N_per_m;  // per unit width
+  std::optional<double> shear_N_per_m;
+  std::optional<double> shear_lock_angle_rad;   // shear angle where stiffening starts
+  std::optional<double> shear_lock_exponent;
+  std::optional<double> warp_bending_N_m, weft_bending_N_m;  // per unit width
+};
+
+struct TermSwitches {
+  bool stretch = true, bending = true, shear = true, parallel_contact = true, friction = true;
+  bool gravity = true, wind = true, handles = true, inertia = true;
+};
+
+struct Scene {
+  std::string source;  // file it came from
+
+  // Woven cloth
+  int warps = 17;  // warp yarns (each runs along u, j fixed)
+  int wefts = 17;  // weft yarns (each runs along v, i fixed)
+  double spacing_m = 1e-3;  // L
+  double radius_m = 5e-4;   // R
+  bool sliding = true;      // false: u, v frozen, 3 DoFs per node
+  Pattern pattern;
+  std::map<std::string, YarnType> yarn_types;
+  std::vector<std::string> warp_yarn_types{"default"};  // cycled over warps
+  std::vector<std::string> weft_yarn_types{"default"};  // cycled over wefts
+  ContactParams contact;
+
+  // Pose and boundary
+  enum class Pose { flat, upright } pose = Pose::upright;
+  double height_m = 0.0;  // z of the top row (upright) or of the sheet (flat)
+  std::vector<NodeRef> pins;
+  std::vector<Handle> handles;
+
+  // Loads
+  std::array<double, 3> gravity_m_per_s2{0.0, 0.0, -9.81};
+  std::array<double, 3> wind_velocity_m_per_s{0.0, 0.0, 0.0};
+  double air_density_kg_per_m3 = 0.0;  // ρ_w (normal pressure)
+  double wind_drag_Ns_per_m3 = 0.0;    // d_w (tangential drag per area)
+
+  // Time
+  double duration_s = 0.5;
+  double dt_s = 1e-3;
+  double output_interval_s = 0.01;
+  std::string integrator = "be-linear";
+  bool adaptive = false;
+  double rtol = 1e-6, atol = 1e-9;
+
+  TermSwitches terms;
+  FemSettings fem;
+
+  int nodes_u() const { return wefts; }  // nodes along a warp = number of wefts
+  int nodes_v() const { return warps; }
+  const YarnType& warp_type(int j) const { return yarn_types.at(warp_yarn_types[j % warp_yarn_types.size()]); }
+  const YarnType& weft_type(int i) const { return yarn_types.at(weft_yarn_types[i % weft_yarn_types.size()]); }
+};
+
+// A scene that fails validation. what() reads
+//   "<file>:<line>: key '<key>': got <value>, expected <expected>".
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string file, int line, std::string key, std::string value, std::string expected);
+  std::string file, key, value, expected;
+  int line;
+};
+
+// Reads and validates a scene; throws SceneError (missing file: line 0).
+Scene load_scene(const std::string& path);
+Scene parse_scene(const std::string& toml_text, const std::string& source_name);
+
+}  // namespace wl

@@ -1,0 +1,47 @@
+// The woven grid of the yarn-level model (physics.md §1): node (i, j) is the
+// crossing of weft i and warp j; i runs along the warp (material u = i·L), j
+// along the weft (v = j·L). Warp j passes nodes (0..nu−1, j) and slides in u;
+// weft i passes nodes (i, 0..nv−1) and slides in v. The outer ring has no
+// sliding DoFs (physics.md §1.2, I-16); neither has any node when sliding is off.
+#pragma once
+#include <vector>
+
+#include "models/core/types.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+struct NodeDofs {
+  int x = -1;  // index of x (3 consecutive DoFs)
+  int u = -1;  // DoF index, or an encoded constant (types.h) when frozen
+  int v = -1;
+};
+
+class WovenGrid {
+ public:
+  explicit WovenGrid(const Scene& scene);
+  int nu() const { return nu_; }
+  int nv() const { return nv_; }
+  int num_nodes() const { return nu_ * nv_; }
+  int node(int i, int j) const { return i + nu_ * j; }
+  bool interior(int i, int j) const { return i > 0 && j > 0 && i < nu_ - 1 && j < nv_ - 1; }
+  const NodeDofs& dofs(int n) const { return dofs_[n]; }
+  int num_dofs() const { return num_dofs_; }
+  // Constant coordinates referenced by encoded stencil entries.
+  const Vec& constants() const { return constants_; }
+  // Over/under sign s_ij = ±1: +1 when the weft lies on the +n side of the warp (physics.md §1.5).
+  int sign(int i, int j) const { return sign_[node(i, j)]; }
+  double spacing() const { return L_; }
+
+ private:
+  int nu_, nv_, num_dofs_ = 0;
+  double L_;
+  std::vector<NodeDofs> dofs_;
+  std::vector<int> sign_;
+  Vec constants_;
+};
+
+// Pattern masks (physics.md §1.5; documented in README): +1/−1 per crossing.
+int pattern_sign(const Pattern& p, int i, int j);
+
+}  // namespace wl
