@@ -88,8 +88,11 @@ void Source::fail(int line, std::string key, std::string value, std::string expe
 int line_of(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
 
 std::string format_number(double x) {
-  char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, x);
+  // Shortest round-trip digits; fixed notation for ordinary magnitudes.
+  char buf[400];
+  const double a = std::abs(x);
+  const bool fixed = a == 0.0 || (a >= 1e-4 && a < 1e7);
+  const auto res = std::to_chars(buf, buf + sizeof buf, x, fixed ? std::chars_format::fixed : std::chars_format::scientific);
   return std::string(buf, res.ptr);
 }
 
