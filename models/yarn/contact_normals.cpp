@@ -103,7 +103,7 @@ void ContactNormals::compute(const Vec& q) {
       const double on = orient.norm();
       if (eig.eigenvalues()[1] <= 1e-12 * eig.eigenvalues()[2] && on > 0.0) n = orient / on;
       if (n.dot(orient) < 0.0) n = -n;
-      n_[id] = grid_.sign(i, j) * n;
+      n_[id] = static_cast<double>(grid_.sign(i, j)) * n;
       xw_[id] = x_[id] - R_ * n_[id];  // crimped warp copy (App. A)
       xf_[id] = x_[id] + R_ * n_[id];  // crimped weft copy
       fu_[id].setZero();
