@@ -63,7 +63,8 @@ void SegmentInertiaTerm::mass_block(const double* q, double rho, double* m) {
   const Vec3 d = x1 - x0;
   const double D = q[7] - q[6];
   // M = ρ/6 [D A0 + B(d, ‖d‖²/D)], physics.md §2.1 compact form
-  Eigen::Map<Mat8>(m) = rho / 6.0 * (D * pattern_a0() + pattern_b(d, d.squaredNorm() / D));
+  Eigen::Map<Mat8> out(m);
+  out = rho / 6.0 * (D * pattern_a0() + pattern_b(d, d.squaredNorm() / D));
 }
 
 double SegmentInertiaTerm::kinetic_energy(const double* q, const double* v, double rho) {
