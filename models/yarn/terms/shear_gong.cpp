@@ -1,5 +1,6 @@
 #include "models/yarn/terms/shear_gong.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
