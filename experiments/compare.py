@@ -249,6 +249,8 @@ def plot(path, rows, label_a, label_b):
     ax.set_xlabel("time (s)")
     ax.set_ylabel("distance (mm)")
     ax.set_title(f"{label_a} vs {label_b}\nstep time ratio B/A = {rows[0][3]:.3g}")
+    ax.set_ylim(bottom=0.0)
+    ax.ticklabel_format(axis="y", useOffset=False)
     ax.grid(True, alpha=0.3)
     ax.legend()
     written = wio.save_figure(fig, path, svg=True)

@@ -43,7 +43,9 @@ def plot(run, out, partial=False):
     ax_v.grid(True, alpha=0.3)
     title = wio.run_label(run)
     if "step_wall_s" in metrics and len(metrics["step_wall_s"]):
-        title += f"\n{len(t)} steps, median step {np.median(metrics['step_wall_s']) * 1e3:.3g} ms"
+        median = float(np.median(metrics["step_wall_s"]))
+        step = f"{median:.3g} s" if median >= 1.0 else f"{median * 1e3:.3g} ms"
+        title += f"\n{len(t)} steps, median step wall time {step}"
     fig.suptitle(title)
     written = wio.save_figure(fig, out, svg=True)
     plt.close(fig)
