@@ -167,6 +167,37 @@ TEST(CompareScript, ContinuumAgainstContinuumUsesUv) {
   expect_one_millimetre(csv, 6.0 / 1.0);
 }
 
+TEST(CompareScript, PointsOutsideTheSurfaceUseTheNearestTriangle) {
+  ASSERT_TRUE(test::python_with("numpy, meshio"));
+  Runs runs;
+  // Two crossings: one inside B's material square, one 1 cm left of its edge u = 0.
+  const auto outside = runs.dir / "outside";
+  write_run(outside, "outside", {0.0}, {1.0}, [](double t) {
+    Frame f;
+    f.time = t;
+    f.points.resize(2, 3);
+    f.points.row(0) = (place(0.05, 0.05, t) + Eigen::Vector3d(0, 0, kOffset)).transpose();
+    f.points.row(1) = (place(-0.01, 0.05, t) + Eigen::Vector3d(0, 0, kOffset)).transpose();
+    f.point_data.push_back({"u", 1, {0.05, -0.01}});
+    f.point_data.push_back({"v", 1, {0.05, 0.05}});
+    f.cells.push_back({CellType::line, {0, 1}});  // meshio 5 cannot read a VTU without cells
+    return f;
+  });
+  const auto csv = runs.dir / "distance.csv";
+  const auto r = run_script("compare.py", test::shell_quote(outside.string()) + " " +
+                                              test::shell_quote(runs.coarse.string()) + " --out " +
+                                              test::shell_quote(csv.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::string header;
+  const auto rows = read_csv_rows(csv, header);
+  ASSERT_EQ(rows.size(), 1u);
+  // The outside point is compared with B at (0, 0.05): place(-0.01,·) − place(0,·) + 1 mm z
+  // = (−0.01, 0, −0.003 + 0.001) m.
+  const double far = std::sqrt(0.01 * 0.01 + 0.002 * 0.002);
+  EXPECT_NEAR(rows[0][2], far, 1e-12);
+  EXPECT_NEAR(rows[0][1], std::sqrt((kOffset * kOffset + far * far) / 2), 1e-12);
+}
+
 TEST(CompareScript, MissingRunFolderExitsWithStatus2) {
   ASSERT_TRUE(test::python_with("numpy, meshio"));
   Runs runs;
