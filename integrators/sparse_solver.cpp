@@ -44,8 +44,12 @@ SparseSolver::SparseSolver(const SparseMatrix& pattern, std::span<const int> fix
     for (int p = pattern.outerIndexPtr()[col]; p < pattern.outerIndexPtr()[col + 1]; ++p)
       if (reduced_index[pattern.innerIndexPtr()[p]] >= 0) value_map_[k++] = p;
   }
-  if (backend_ == Backend::umfpack) impl_->lu.analyzePattern(reduced_);
-  else impl_->llt.analyzePattern(reduced_);
+  // The step matrix is structurally symmetric (full stencil blocks), so UMFPACK's
+  // symmetric strategy (AMD on A + Aᵀ, diagonal pivots preferred) applies; its
+  // automatic choice would look at the zero values of the pattern and pick the
+  // much slower unsymmetric strategy. The analysis itself waits for the first
+  // numeric values (factorize), then is reused.
+  // impl_->lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
   rb_.resize(m);
   rx_.resize(m);
 }
@@ -56,6 +60,11 @@ bool SparseSolver::factorize(const SparseMatrix& a) {
   double* dst = reduced_.valuePtr();
   const double* src = a.valuePtr();
   for (size_t k = 0; k < value_map_.size(); ++k) dst[k] = src[value_map_[k]];
+  if (!analyzed_) {
+    if (backend_ == Backend::umfpack) impl_->lu.analyzePattern(reduced_);
+    else impl_->llt.analyzePattern(reduced_);
+    analyzed_ = true;
+  }
   if (backend_ == Backend::umfpack) {
     impl_->lu.factorize(reduced_);
     return impl_->lu.info() == Eigen::Success;

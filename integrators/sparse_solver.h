@@ -1,5 +1,6 @@
 // Sparse direct solver for the implicit step matrix with pinned DoFs removed.
-// The symbolic analysis is done once per pattern; each factorize() reuses it.
+// The symbolic analysis is done once per pattern (at the first factorize, on
+// real values); every later factorize() reuses it.
 // Backends: UMFPACK (general, the default since the yarn step matrix is not
 // symmetric, physics.md §4.1) and CHOLMOD (symmetric positive definite).
 #pragma once
@@ -35,6 +36,7 @@ class SparseSolver {
   std::vector<int> value_map_;   // reduced nnz -> full nnz
   SparseMatrix reduced_;
   std::unique_ptr<Impl> impl_;
+  bool analyzed_ = false;
   mutable Vec rb_, rx_;
 };
 
