@@ -205,6 +205,24 @@ double SpringChain::total_energy(const Vec& q, const Vec& v) const {
   return 0.5 * m_ * v.tail(n_).squaredNorm() + potential_energy(q);
 }
 
+double SpringChain::equilibrium_energy() const {
+  Vec q, v;
+  // The closed form started at rest in equilibrium stays there; its mean
+  // position is x* = K⁻¹c. Recompute x* directly (as in exact_state).
+  const int n = n_;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    K(i, i) = (i == n - 1) ? k_ : 2 * k_;
+    if (i > 0) K(i, i - 1) = -k_;
+    if (i < n - 1) K(i, i + 1) = -k_;
+  }
+  Vec c = Vec::Constant(n, m_ * g_);
+  c[n - 1] += k_ * l_;
+  q = Vec::Zero(n + 1);
+  q.tail(n) = K.ldlt().solve(c);
+  return potential_energy(q);
+}
+
 double SpringChain::max_frequency() const { return 2.0 * std::sqrt(k_ / m_); }
 
 // ---- VariableMassOscillator ---------------------------------------------------

@@ -28,6 +28,8 @@ class SpringChain : public TermModel {
   // the free block (q0[0] must be 0, the pinned position).
   void exact_state(double t, Vec& q, Vec& v) const;
   double total_energy(const Vec& q, const Vec& v) const;
+  // Energy of the static equilibrium (the minimum of total_energy).
+  double equilibrium_energy() const;
   // Largest angular frequency of the chain [rad/s].
   double max_frequency() const;
 
