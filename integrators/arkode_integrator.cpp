@@ -51,9 +51,7 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
     return;
   }
   if (!mass_in_arkode_) msolver_ = std::make_unique<SparseSolver>(model.pattern(), fixed_);
-  const auto backend = opt.sparse_backend == IntegratorOptions::SparseBackend::klu
-                           ? IntegratorOptions::SparseBackend::klu
-                           : IntegratorOptions::SparseBackend::umfpack;
+  const auto backend = sun::resolve(opt.sparse_backend);
 
   if (!ctx_) ctx_ = sun::make_context();
   y_ = sun::make_vector(2 * n_, ctx_.get());

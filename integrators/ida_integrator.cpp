@@ -19,8 +19,7 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   jac_.reset();
   model_ = &model;
   opt_ = opt;
-  backend_ = opt.sparse_backend == IntegratorOptions::SparseBackend::klu ? IntegratorOptions::SparseBackend::klu
-                                                                         : IntegratorOptions::SparseBackend::umfpack;
+  backend_ = sun::resolve(opt.sparse_backend);
   t_ = t0;
   n_ = model.num_dofs();
   fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());

@@ -6,9 +6,9 @@
 // APPROXIMATION: the term ∂(M(q) v′)/∂q is neglected (it is zero for a
 // constant mass; for the yarn model's M(q) the Newton iteration converges with
 // this inexact Jacobian). Pinned DoFs get the equations q′ = 0, v′ = 0.
-// The Jacobian goes to a sparse direct solver: a custom SUNLinearSolver around
-// SparseSolver (UMFPACK, the default, measured faster) or SUNDIALS' KLU
-// (IntegratorOptions::sparse_backend). Initial accelerations are consistent:
+// The Jacobian goes to a sparse direct solver: SUNDIALS' KLU (the default,
+// measured faster) or a custom SUNLinearSolver around SparseSolver (UMFPACK),
+// chosen by IntegratorOptions::sparse_backend. Initial accelerations are consistent:
 // v′₀ = M⁻¹ f(t0, q0, v0).
 // Stepping: IDA_ONE_STEP with the stop time set to t_out, so every return is
 // one accepted step (on_step, model.accept_step, check_state per step) and the
@@ -49,7 +49,7 @@ class IdaIntegrator : public Integrator {
 
   Model* model_ = nullptr;
   IntegratorOptions opt_;
-  IntegratorOptions::SparseBackend backend_ = IntegratorOptions::SparseBackend::umfpack;
+  IntegratorOptions::SparseBackend backend_ = IntegratorOptions::SparseBackend::klu;
   double t_ = 0.0;
   Vec q_, v_;
   int n_ = 0;

@@ -39,7 +39,8 @@ struct IntegratorOptions {
   // A state whose max |v| exceeds this is a divergence [m/s].
   double runaway_speed = 1e4;
   // Sparse direct solver inside the SUNDIALS integrators: automatic = the
-  // measured faster one (UMFPACK through SparseSolver), or force KLU / UMFPACK.
+  // measured faster one (SUNDIALS' KLU), or force KLU / UMFPACK (the custom
+  // SUNLinearSolver around SparseSolver).
   enum class SparseBackend { automatic, klu, umfpack };
   SparseBackend sparse_backend = SparseBackend::automatic;
 };

@@ -110,8 +110,13 @@ LinearSolver make_umfpack_solver(SUNContext ctx) {
   return LinearSolver(s);
 }
 
+IntegratorOptions::SparseBackend resolve(IntegratorOptions::SparseBackend backend) {
+  return backend == IntegratorOptions::SparseBackend::umfpack ? IntegratorOptions::SparseBackend::umfpack
+                                                              : IntegratorOptions::SparseBackend::klu;
+}
+
 LinearSolver make_sparse_solver(IntegratorOptions::SparseBackend backend, N_Vector y, SUNMatrix a, SUNContext ctx) {
-  if (backend == IntegratorOptions::SparseBackend::klu) {
+  if (resolve(backend) == IntegratorOptions::SparseBackend::klu) {
     SUNLinearSolver s = SUNLinSol_KLU(y, a, ctx);
     if (!s) throw std::runtime_error("SUNLinSol_KLU failed");
     return LinearSolver(s);
@@ -120,7 +125,7 @@ LinearSolver make_sparse_solver(IntegratorOptions::SparseBackend backend, N_Vect
 }
 
 const char* backend_name(IntegratorOptions::SparseBackend backend) {
-  return backend == IntegratorOptions::SparseBackend::klu ? "klu" : "umfpack";
+  return resolve(backend) == IntegratorOptions::SparseBackend::klu ? "klu" : "umfpack";
 }
 
 // ---- BlockSystem ------------------------------------------------------------

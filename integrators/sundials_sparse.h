@@ -21,7 +21,9 @@ void copy_to(const SparseMatrix& a, SUNMatrix m);
 
 // The custom SUNLinearSolver around SparseSolver (UMFPACK).
 LinearSolver make_umfpack_solver(SUNContext ctx);
-// KLU or UMFPACK as `backend` asks (automatic = UMFPACK, measured faster).
+// KLU or UMFPACK as `backend` asks (automatic = KLU: measured faster on a
+// 4800-DoF spring net, ida 6.7 s vs 9.0 s CPU, arkode-dirk 92 s vs 100 s).
+IntegratorOptions::SparseBackend resolve(IntegratorOptions::SparseBackend backend);
 LinearSolver make_sparse_solver(IntegratorOptions::SparseBackend backend, N_Vector y, SUNMatrix a, SUNContext ctx);
 const char* backend_name(IntegratorOptions::SparseBackend backend);
 
