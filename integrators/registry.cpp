@@ -1,7 +1,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "integrators/arkode_integrator.h"
 #include "integrators/backward_euler.h"
+#include "integrators/ida_integrator.h"
+#include "integrators/symplectic_euler.h"
 #include "integrators/integrator.h"
 
 namespace wl {
@@ -27,11 +30,18 @@ StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt)
   return {};
 }
 
-std::vector<std::string> integrator_names() { return {"be-linear", "be-newton"}; }
+std::vector<std::string> integrator_names() {
+  return {"be-linear", "be-newton", "ida", "arkode-erk", "arkode-dirk", "arkode-imex", "symplectic"};
+}
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name) {
   if (name == "be-linear") return std::make_unique<BackwardEuler>(BackwardEuler::Variant::linear);
   if (name == "be-newton") return std::make_unique<BackwardEuler>(BackwardEuler::Variant::newton);
+  if (name == "ida") return std::make_unique<IdaIntegrator>();
+  if (name == "arkode-erk") return std::make_unique<ArkodeIntegrator>(ArkodeIntegrator::Variant::erk);
+  if (name == "arkode-dirk") return std::make_unique<ArkodeIntegrator>(ArkodeIntegrator::Variant::dirk);
+  if (name == "arkode-imex") return std::make_unique<ArkodeIntegrator>(ArkodeIntegrator::Variant::imex);
+  if (name == "symplectic") return std::make_unique<SymplecticEuler>();
   std::string known;
   for (auto& n : integrator_names()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown integrator '" + name + "' (expected one of: " + known + ")");

@@ -95,8 +95,12 @@ Assembly::Assembly(int num_dofs, std::vector<Term*> terms) : num_dofs_(num_dofs)
 
 void Assembly::add_stage(int stage, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
                          Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const {
-  for (const TermPlan& plan : plans_)
-    if (plan.term->stage() == stage) add_term(plan, q, v, constants, req, f, dfdq, dfdv, mass);
+  for (const TermPlan& plan : plans_) {
+    if (plan.term->stage() != stage) continue;
+    if (req.filter == TermFilter::explicit_only && !plan.term->imex_explicit()) continue;
+    if (req.filter == TermFilter::implicit_only && plan.term->imex_explicit()) continue;
+    add_term(plan, q, v, constants, req, f, dfdq, dfdv, mass);
+  }
 }
 
 void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const Vec& constants,

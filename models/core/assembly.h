@@ -12,10 +12,14 @@
 
 namespace wl {
 
+// Which terms contribute (IMEX split, Term::imex_explicit()).
+enum class TermFilter { all, explicit_only, implicit_only };
+
 struct AssemblyRequest {
   bool dfdq = false;
   bool dfdv = false;
   bool mass = false;
+  TermFilter filter = TermFilter::all;
 };
 
 class Assembly {

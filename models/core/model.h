@@ -19,6 +19,11 @@ enum EvalFlags : unsigned {
   kDfdq = 2u,
   kDfdv = 4u,
   kMass = 8u,
+  // IMEX split: restrict force and Jacobians to the explicit (gravity, wind:
+  // Term::imex_explicit()) or the implicit (all other) terms. Mass is not
+  // split: request it without these bits.
+  kExplicitTerms = 16u,
+  kImplicitTerms = 32u,
 };
 
 struct Evaluation {

@@ -45,6 +45,9 @@ class Term {
   virtual bool provides_mass() const { return false; }          // writes mass
   // 0: evaluated first; 1: evaluated after the stage-0 force is assembled.
   virtual int stage() const { return 0; }
+  // IMEX split (arkode-imex): true for non-stiff external forces (gravity,
+  // wind) that an additive Runge–Kutta method treats explicitly.
+  virtual bool imex_explicit() const { return false; }
 
   // Called once per model evaluation before any element, serially.
   virtual void prepare(const EvalContext&) {}

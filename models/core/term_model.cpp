@@ -29,6 +29,8 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
   if (out.force.size() != num_dofs_) allocate_evaluation(*this, out);
   out.force.setZero();
   AssemblyRequest req{(flags & kDfdq) != 0, (flags & kDfdv) != 0, (flags & kMass) != 0};
+  if (flags & kExplicitTerms) req.filter = TermFilter::explicit_only;
+  else if (flags & kImplicitTerms) req.filter = TermFilter::implicit_only;
   auto zero = [](SparseMatrix& m) { std::fill(m.valuePtr(), m.valuePtr() + m.nonZeros(), 0.0); };
   if (req.dfdq) zero(out.dfdq);
   if (req.dfdv) zero(out.dfdv);

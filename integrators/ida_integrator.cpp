@@ -1,0 +1,180 @@
+#include "integrators/ida_integrator.h"
+
+#include <ida/ida_ls.h>
+
+#include <cmath>
+
+#include "integrators/sparse_solver.h"
+#include "integrators/step_clock.h"
+
+namespace wl {
+
+IdaIntegrator::~IdaIntegrator() = default;
+
+void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
+  StepClock clock(own_);
+  // Release any previous run (memory before the objects it uses).
+  mem_.reset();
+  ls_.reset();
+  jac_.reset();
+  model_ = &model;
+  opt_ = opt;
+  backend_ = sun::resolve(opt.sparse_backend);
+  t_ = t0;
+  n_ = model.num_dofs();
+  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
+  q_ = q0;
+  v_ = v0;
+  for (int i : fixed_) v_[i] = 0.0;
+  stats_ = {};
+  own_ = {};
+  last_error_.clear();
+  last_nni_ = 0;
+  allocate_evaluation(model, ev_);
+
+  // Consistent initial accelerations v′₀ = M⁻¹ f(t0, q0, v0) (pinned: 0).
+  model.evaluate(t0, q_, v_, kForce | kMass, ev_);
+  mass_ = ev_.mass;
+  SparseSolver msolve(model.pattern(), fixed_);
+  Vec a0 = Vec::Zero(n_);
+  if (msolve.factorize(ev_.mass)) msolve.solve(ev_.force, a0);
+
+  if (!ctx_) ctx_ = sun::make_context();
+  y_ = sun::make_vector(2 * n_, ctx_.get());
+  yp_ = sun::make_vector(2 * n_, ctx_.get());
+  Eigen::Map<Vec> y(sun::data(y_.get()), 2 * n_), yp(sun::data(yp_.get()), 2 * n_);
+  y << q_, v_;
+  yp << v_, a0;
+
+  block_ = std::make_unique<sun::BlockSystem>(model.pattern(), fixed_);
+  jac_ = sun::make_sparse_matrix(block_->matrix(), ctx_.get());
+  ls_ = sun::make_sparse_solver(backend_, y_.get(), jac_.get(), ctx_.get());
+
+  mem_ = sun::IdaMemory(IDACreate(ctx_.get()));
+  void* m = mem_.get();
+  auto check = [&](int flag, const char* what) {
+    if (flag < 0) throw std::runtime_error(std::string("ida: ") + what + " failed: " + IDAGetReturnFlagName(flag));
+  };
+  check(IDASetErrHandlerFn(m, &IdaIntegrator::error_handler, this), "IDASetErrHandlerFn");
+  check(IDAInit(m, &IdaIntegrator::residual, t0, y_.get(), yp_.get()), "IDAInit");
+  check(IDASetUserData(m, this), "IDASetUserData");
+  check(IDASStolerances(m, opt.rtol, opt.atol), "IDASStolerances");
+  check(IDASetLinearSolver(m, ls_.get(), jac_.get()), "IDASetLinearSolver");
+  check(IDASetJacFn(m, &IdaIntegrator::jacobian), "IDASetJacFn");
+  check(IDASetInitStep(m, opt.dt), "IDASetInitStep");
+  if (!opt.adaptive) check(IDASetMaxStep(m, opt.dt), "IDASetMaxStep");
+  check(IDASetMinStep(m, opt.min_step), "IDASetMinStep");
+  check(IDASetMaxNumSteps(m, 1000000), "IDASetMaxNumSteps");
+}
+
+int IdaIntegrator::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self) {
+  IdaIntegrator& s = sun::user_data_as<IdaIntegrator>(self);
+  const int n = s.n_;
+  Eigen::Map<const Vec> yy(sun::data(y), 2 * n), yd(sun::data(yp), 2 * n);
+  Eigen::Map<Vec> rr(sun::data(r), 2 * n);
+  if (!yy.allFinite()) return 1;  // recoverable: IDA retries with a smaller step
+  const bool mq = s.model_->mass_depends_on_q();
+  const Vec q = yy.head(n), v = yy.tail(n);
+  s.model_->evaluate(t, q, v, kForce | (mq ? kMass : 0u), s.ev_);
+  const SparseMatrix& M = mq ? s.ev_.mass : s.mass_;
+  rr.head(n) = yd.head(n) - v;
+  rr.tail(n) = M * yd.tail(n) - s.ev_.force;
+  for (int i : s.fixed_) {  // pinned: q′ = 0, v′ = 0
+    rr[i] = yd[i];
+    rr[n + i] = yd[n + i];
+  }
+  return rr.allFinite() ? 0 : 1;
+}
+
+int IdaIntegrator::jacobian(double t, double cj, N_Vector y, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector,
+                            N_Vector, N_Vector) {
+  IdaIntegrator& s = sun::user_data_as<IdaIntegrator>(self);
+  const int n = s.n_;
+  Eigen::Map<const Vec> yy(sun::data(y), 2 * n);
+  const bool mq = s.model_->mass_depends_on_q();
+  const Vec q = yy.head(n), v = yy.tail(n);
+  s.model_->evaluate(t, q, v, kForce | kDfdq | kDfdv | (mq ? kMass : 0u), s.ev_);
+  const SparseMatrix& M = mq ? s.ev_.mass : s.mass_;
+  // [c_j I, −I ; −K, c_j M − D], ∂(M v′)/∂q neglected.
+  s.block_->fill(cj, -1.0, -1.0, &s.ev_.dfdq, -1.0, &s.ev_.dfdv, cj, &M, cj);
+  sun::copy_to(s.block_->matrix(), J);
+  return s.block_->matrix().coeffs().allFinite() ? 0 : 1;
+}
+
+void IdaIntegrator::error_handler(int code, const char* module, const char* function, char* msg, void* self) {
+  IdaIntegrator& s = sun::user_data_as<IdaIntegrator>(self);
+  s.last_error_ = std::string(function ? function : "") + ": " + (msg ? msg : "");
+}
+
+void IdaIntegrator::update_stats() {
+  void* m = mem_.get();
+  long steps = 0, etf = 0, ncf = 0, res = 0, jac = 0, setups = 0, nni = 0;
+  IDAGetNumSteps(m, &steps);
+  IDAGetNumErrTestFails(m, &etf);
+  IDAGetNumNonlinSolvConvFails(m, &ncf);
+  IDAGetNumResEvals(m, &res);
+  IDAGetNumJacEvals(m, &jac);
+  IDAGetNumLinSolvSetups(m, &setups);
+  IDAGetNumNonlinSolvIters(m, &nni);
+  stats_.steps = steps;
+  stats_.rejected_steps = etf + ncf;
+  stats_.rhs_evals = res;
+  stats_.jac_evals = jac;
+  stats_.linear_setups = setups;
+  stats_.linear_solves = nni;  // a direct solver: one solve per Newton iteration
+  stats_.nonlinear_iters = nni;
+  stats_.wall_s = own_.wall_s;
+  stats_.cpu_s = own_.cpu_s;
+}
+
+StepResult IdaIntegrator::failure(int flag) {
+  Outcome o = Outcome::diverged;
+  if (flag == IDA_ERR_FAIL) o = Outcome::step_too_small;
+  else if (flag == IDA_TOO_MUCH_WORK) o = Outcome::max_steps;
+  Eigen::Map<const Vec> y(sun::data(y_.get()), 2 * n_);
+  if (!y.allFinite() || flag == IDA_RES_FAIL || flag == IDA_REP_RES_ERR || flag == IDA_FIRST_RES_FAIL)
+    o = Outcome::nan;
+  return {o, std::string("IDA failed with ") + IDAGetReturnFlagName(flag) + (last_error_.empty() ? "" : ": ") +
+                 last_error_};
+}
+
+StepResult IdaIntegrator::advance_to(double t_out) {
+  if (!mem_.get()) return {Outcome::diverged, "ida: not initialized"};
+  StepResult result;
+  {
+    StepClock clock(own_);
+    const double eps = 1e-12 * std::max(1.0, std::abs(t_out));
+    if (t_out - t_ > eps) IDASetStopTime(mem_.get(), t_out);
+    while (t_out - t_ > eps) {
+      if (stats_.steps >= opt_.max_steps) {
+        result = {Outcome::max_steps, "step limit reached (" + std::to_string(opt_.max_steps) + " steps)"};
+        break;
+      }
+      const double wall0 = clock.elapsed_wall();
+      double tret = t_;
+      const int flag = IDASolve(mem_.get(), t_out, &tret, y_.get(), yp_.get(), IDA_ONE_STEP);
+      update_stats();
+      if (flag < 0) {
+        result = failure(flag);
+        break;
+      }
+      Eigen::Map<const Vec> y(sun::data(y_.get()), 2 * n_);
+      const double h = tret - t_;
+      t_ = tret;
+      q_ = y.head(n_);
+      v_ = y.tail(n_);
+      result = check_state(q_, v_, opt_);
+      if (result.outcome != Outcome::ok) break;
+      model_->accept_step(t_, q_, v_, h);
+      long nni = 0;
+      IDAGetNumNonlinSolvIters(mem_.get(), &nni);
+      if (on_step) on_step({t_, h, static_cast<int>(nni - last_nni_), clock.elapsed_wall() - wall0});
+      last_nni_ = nni;
+    }
+    if (result.outcome == Outcome::ok) t_ = t_out;
+  }
+  update_stats();
+  return result;
+}
+
+}  // namespace wl

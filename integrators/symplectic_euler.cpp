@@ -1,0 +1,57 @@
+#include "integrators/symplectic_euler.h"
+
+#include "integrators/step_clock.h"
+
+namespace wl {
+
+void SymplecticEuler::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
+  model_ = &model;
+  opt_ = opt;
+  t_ = t0;
+  q_ = q0;
+  v_ = v0;
+  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
+  for (int i : fixed_) v_[i] = 0.0;
+  allocate_evaluation(model, ev_);
+  solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs());
+  factorized_ = false;
+  stats_ = {};
+}
+
+StepResult SymplecticEuler::step(double h) {
+  StepClock clock(stats_);
+  const bool refactor = model_->mass_depends_on_q() || !factorized_;
+  model_->evaluate(t_, q_, v_, kForce | (refactor ? kMass : 0u), ev_);
+  ++stats_.rhs_evals;
+  if (refactor) {
+    ++stats_.linear_setups;
+    if (!solver_->factorize(ev_.mass)) return {Outcome::diverged, "singular mass matrix"};
+    factorized_ = true;
+  }
+  solver_->solve(ev_.force, a_);  // zero on pinned DoFs
+  ++stats_.linear_solves;
+  v_ += h * a_;
+  for (int i : fixed_) v_[i] = 0.0;
+  q_ += h * v_;
+  StepResult r = check_state(q_, v_, opt_);
+  if (r.outcome != Outcome::ok) return r;
+  t_ += h;
+  ++stats_.steps;
+  model_->accept_step(t_, q_, v_, h);
+  if (on_step) on_step({t_, h, 0, clock.elapsed_wall()});
+  return r;
+}
+
+StepResult SymplecticEuler::advance_to(double t_out) {
+  while (t_out - t_ > 1e-9 * opt_.dt) {
+    if (stats_.steps >= opt_.max_steps) return {Outcome::max_steps, "step limit reached"};
+    double h = std::min(opt_.dt, t_out - t_);
+    if (t_out - t_ - h < 1e-9 * opt_.dt) h = t_out - t_;
+    StepResult r = step(h);
+    if (r.outcome != Outcome::ok) return r;
+  }
+  t_ = t_out;
+  return {};
+}
+
+}  // namespace wl

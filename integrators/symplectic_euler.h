@@ -1,0 +1,38 @@
+// `symplectic`: symplectic Euler, in-house, fixed step (the cheap explicit
+// baseline):  v₁ = v₀ + h M(q₀)⁻¹ f(t₀, q₀, v₀),  q₁ = q₀ + h v₁.
+// M is factorized once when constant and refactorized every step when it
+// depends on q. Pinned DoFs keep q and v = 0. IntegratorOptions::adaptive is
+// ignored: the method always steps with dt (the last step shortened to hit
+// t_out).
+#pragma once
+#include <memory>
+
+#include "integrators/integrator.h"
+#include "integrators/sparse_solver.h"
+
+namespace wl {
+
+class SymplecticEuler : public Integrator {
+ public:
+  std::string name() const override { return "symplectic"; }
+  void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
+  StepResult advance_to(double t_out) override;
+  double t() const override { return t_; }
+  const Vec& q() const override { return q_; }
+  const Vec& v() const override { return v_; }
+  const IntegratorStats& stats() const override { return stats_; }
+  StepResult step(double h);
+
+ private:
+  Model* model_ = nullptr;
+  IntegratorOptions opt_;
+  double t_ = 0.0;
+  Vec q_, v_, a_;
+  Evaluation ev_;
+  std::unique_ptr<SparseSolver> solver_;
+  bool factorized_ = false;
+  std::vector<int> fixed_;
+  IntegratorStats stats_;
+};
+
+}  // namespace wl
