@@ -112,7 +112,7 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
   double* mv = want_m ? mass->valuePtr() : nullptr;
 
   auto run_range = [&](int begin, int end) {
-    std::vector<double> buf(static_cast<size_t>(2 * n + 3 * n * n));
+    std::vector<double> buf(static_cast<size_t>(3 * n + 3 * n * n));  // q, v, f; dfdq, dfdv, mass
     double* ql = buf.data();
     double* vl = ql + n;
     double* fl = vl + n;

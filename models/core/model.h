@@ -3,6 +3,7 @@
 // velocities v live in contiguous vectors; mass, ∂f/∂q and ∂f/∂v share one
 // fixed sparsity pattern; f includes inertial forces where M depends on q.
 #pragma once
+#include <algorithm>
 #include <map>
 #include <span>
 #include <string>
@@ -49,6 +50,12 @@ class Model {
   // History update after an accepted step of size h ending at (t, q, v).
   virtual void accept_step(double t, const Vec& q, const Vec& v, double h) = 0;
 
+  // Largest node speed ‖ẋ‖ [m/s]; the default reads v as consecutive 3-vectors.
+  virtual double max_node_speed(const Vec& v) const {
+    double m = 0.0;
+    for (Eigen::Index i = 0; i + 2 < v.size(); i += 3) m = std::max(m, v.segment<3>(i).norm());
+    return m;
+  }
   // Output frame for the writers; `ev` holds a force evaluation at (t, q, v).
   virtual Frame frame(double t, const Vec& q, const Vec& v) = 0;
   // Short facts for `weavelab info` and the run summary (name -> value).
@@ -57,7 +64,7 @@ class Model {
 
 // Prepares `out` with pattern-shaped matrices and a sized force vector.
 void allocate_evaluation(const Model& model, Evaluation& out);
-// Kinetic energy ½ vᵀ M(q) v.
-double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v);
+// Kinetic energy ½ vᵀ M(q) v; `scratch` is reused between calls.
+double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v, Evaluation& scratch);
 
 }  // namespace wl

@@ -11,11 +11,10 @@ void allocate_evaluation(const Model& model, Evaluation& out) {
   out.mass = model.pattern();
 }
 
-double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v) {
-  Evaluation ev;
-  allocate_evaluation(model, ev);
-  model.evaluate(t, q, v, kMass, ev);
-  return 0.5 * v.dot(ev.mass * v);
+double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v, Evaluation& scratch) {
+  if (scratch.force.size() != model.num_dofs()) allocate_evaluation(model, scratch);
+  model.evaluate(t, q, v, kMass, scratch);
+  return 0.5 * v.dot(scratch.mass * v);
 }
 
 void TermModel::finalize() {
@@ -35,6 +34,7 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
   if (req.dfdv) zero(out.dfdv);
   if (req.mass) zero(out.mass);
 
+  update_auxiliary(t, q, v);
   EvalContext ctx{t, &q, &v, nullptr};
   bool has_stage1 = false;
   for (auto& term : terms_) {

@@ -24,6 +24,9 @@ class TermModel : public Model {
   const Vec& constants() const { return constants_; }
 
  protected:
+  // Global auxiliary quantities (e.g. contact normal forces) that terms read as
+  // frozen inputs; called at the start of every evaluation.
+  virtual void update_auxiliary(double /*t*/, const Vec& /*q*/, const Vec& /*v*/) {}
   // Derived constructors fill num_dofs_, q0_, v0_, fixed_, constants_ and
   // terms_, then call finalize().
   void finalize();

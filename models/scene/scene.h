@@ -71,7 +71,9 @@ struct Scene {
   double radius_m = 5e-4;   // R
   bool sliding = true;      // false: u, v frozen, 3 DoFs per node
   Pattern pattern;
-  std::map<std::string, YarnType> yarn_types;
+  // Yarn types by name; a scene file holds exactly the types its cloth uses
+  // ("default" = YarnType{} when referenced but not defined).
+  std::map<std::string, YarnType> yarn_types{{"default", YarnType{}}};
   std::vector<std::string> warp_yarn_types{"default"};  // cycled over warps
   std::vector<std::string> weft_yarn_types{"default"};  // cycled over wefts
   ContactParams contact;
@@ -115,7 +117,10 @@ class SceneError : public std::runtime_error {
 };
 
 // Reads and validates a scene; throws SceneError (missing file: line 0).
+// The format is documented in scene.cpp and experiments/scenes/README.md.
 Scene load_scene(const std::string& path);
+// Same, from text; `source_name` names the file in errors, and relative
+// [fem] paths are resolved against its directory.
 Scene parse_scene(const std::string& toml_text, const std::string& source_name);
 
 }  // namespace wl

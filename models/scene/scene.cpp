@@ -1,0 +1,403 @@
+// Scene files: TOML (toml++ 3.3) → validated wl::Scene in SI units.
+//
+// FORMAT (also in experiments/scenes/README.md). Every table and key is
+// optional and defaults to the value in scene.h, but an unknown table or key
+// is an error, so a typo never falls back to a default. Integers must be
+// written as integers (17, not 17.0); a number may be written as an integer
+// (1000 for 1000.0). NaN and ±inf are rejected everywhere.
+//
+//   [cloth]
+//     warps, wefts           integers, 3 ≤ n ≤ 16384 (yarn counts; nodes (i, j): i < wefts, j < warps)
+//     spacing_m              L > 0
+//     radius_m               R, 0 < R < spacing_m
+//     sliding                bool (false: u, v frozen)
+//     warp_yarn_types        non-empty array of yarn type names, cycled over the warps (j)
+//     weft_yarn_types        same, cycled over the wefts (i)
+//   [cloth.pattern]
+//     kind                   "plain" | "twill" | "satin"
+//     over, under, shift     twill only: over, under ≥ 1; 0 < |shift| < over+under;
+//                            over+under ≤ min(warps, wefts)
+//     harness, step          satin only: 5 ≤ harness ≤ min(warps, wefts);
+//                            1 < step < harness−1, gcd(step, harness) = 1
+//   [yarn_types.NAME]        one table per yarn type; every defined type must be used
+//     density_kg_per_m, stretch_modulus_Pa, bending_modulus_Pa   all > 0
+//     "default" is YarnType{} of scene.h unless defined here.
+//   [contact]
+//     shear_model, friction_model      "gong" | "cirio"
+//     shear_modulus_Pa, friction_coefficient, friction_stiffness_N_per_m,
+//     friction_damping_Ns_per_m, parallel_stiffness_N_per_m2, lock_exponent   ≥ 0
+//     tanh_sharpness_per_m, lock_sigma                                        > 0
+//   [pose]
+//     kind = "flat" | "upright";  height_m (any number)
+//   [[pins]]      node = [i, j]                 (0 ≤ i < wefts, 0 ≤ j < warps)
+//   [[handles]]   node = [i, j] (required); stiffness_N_per_m > 0
+//                 A node is pinned or held at most once.
+//   [gravity]     acceleration_m_per_s2 = [x, y, z]
+//   [wind]        velocity_m_per_s = [x, y, z]; air_density_kg_per_m3 ≥ 0; drag_Ns_per_m3 ≥ 0
+//   [time]
+//     duration_s > 0; 0 < dt_s ≤ duration_s; output_interval_s ≥ dt_s
+//     integrator (non-empty string; the CLI checks the name), adaptive (bool)
+//     rtol in (0, 1), atol > 0
+//   [terms]       stretch, bending, shear, parallel_contact, friction, gravity, wind,
+//                 handles, inertia (bools)
+//   [fem]
+//     stride ≥ 1, dividing wefts−1 and warps−1; with stride > 1 every pin and
+//       handle must lie on the stride lattice (i and j multiples of stride)
+//     mesh_file, parameter_file   paths relative to the scene file's directory,
+//       resolved on load; the file must exist
+//     areal_density_kg_per_m2, warp_stretch_N_per_m, weft_stretch_N_per_m, shear_N_per_m,
+//     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m
+//       optional numbers > 0 (absent = computed / taken from parameter_file)
+//
+// ERRORS: SceneError with file, line (source line of the offending value; for a
+// missing key or a violated default, the line of its table), the dotted key
+// ("cloth.radius_m", "pins[1].node"), the value as written and what was
+// expected. Syntax errors: key "(syntax)"; missing file: line 0, key "(file)".
+#include "models/scene/scene.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+#include "models/scene/toml_reader.h"
+
+namespace wl {
+
+namespace {
+
+using scene_detail::format_number;
+using scene_detail::line_of;
+using scene_detail::Source;
+using scene_detail::TableReader;
+
+constexpr long long kMaxYarns = 16384;  // keeps node and DoF indices well inside int
+
+std::string eq(double x) { return " (= " + format_number(x) + ")"; }
+std::string eq(int x) { return " (= " + std::to_string(x) + ")"; }
+auto positive = [](double x) { return x > 0.0; };
+auto non_negative = [](double x) { return x >= 0.0; };
+
+struct YarnTypeDef {
+  YarnType type;
+  int line;
+  std::string written;
+};
+
+std::map<std::string, YarnTypeDef> read_yarn_types(TableReader& top) {
+  std::map<std::string, YarnTypeDef> defs;
+  auto yt = top.subtable("yarn_types");
+  if (!yt) return defs;
+  yt->accept_all_keys();
+  for (auto&& [k, v] : yt->table()) {
+    const std::string name(k.str());
+    const auto* t = v.as_table();
+    if (!t) yt->fail_at(v, name, "a table [yarn_types." + name + "] of yarn parameters");
+    TableReader r(top.source(), *t, yt->key_path(name));
+    YarnType y;
+    r.read_number("density_kg_per_m", y.density_kg_per_m, "a number > 0 (kg/m)", positive);
+    r.read_number("stretch_modulus_Pa", y.stretch_modulus_Pa, "a number > 0 (Pa)", positive);
+    r.read_number("bending_modulus_Pa", y.bending_modulus_Pa, "a number > 0 (Pa)", positive);
+    r.finish();
+    defs[name] = {y, line_of(v), top.source().written(v)};
+  }
+  return defs;
+}
+
+void read_pattern(TableReader& p, Scene& s) {
+  int kind = 0;
+  p.read_choice("kind", kind, {"plain", "twill", "satin"});
+  Pattern& pat = s.pattern;
+  pat.kind = static_cast<Pattern::Kind>(kind);
+  const int grid = std::min(s.warps, s.wefts);
+  const std::string grid_txt = "min(cloth.warps, cloth.wefts)" + eq(grid);
+  switch (pat.kind) {
+    case Pattern::Kind::plain:
+      p.finish("(twill takes over, under, shift; satin takes harness, step)");
+      return;
+    case Pattern::Kind::twill: {
+      auto ge1 = [](long long x) { return x >= 1; };
+      p.read_int("over", pat.twill_over, "an integer ≥ 1", ge1);
+      p.read_int("under", pat.twill_under, "an integer ≥ 1", ge1);
+      p.read_int("shift", pat.twill_shift, "an integer with 0 < |shift| < over + under");
+      p.finish("(for kind = \"twill\")");
+      const int period = pat.twill_over + pat.twill_under;
+      if (period > grid)
+        p.fail_key(p.table().get("under") ? "under" : "over",
+                   "a twill period over + under" + eq(period) + " ≤ " + grid_txt, std::to_string(pat.twill_over));
+      if (pat.twill_shift == 0 || std::abs(pat.twill_shift) >= period)
+        p.fail_key("shift", "an integer with 0 < |shift| < over + under" + eq(period), std::to_string(pat.twill_shift));
+      return;
+    }
+    case Pattern::Kind::satin: {
+      p.read_int("harness", pat.satin_harness,
+                 "an integer ≥ 5 (a regular satin needs 1 < step < harness−1 with gcd(step, harness) = 1)",
+                 [](long long x) { return x >= 5; });
+      p.read_int("step", pat.satin_step, "an integer with 1 < step < harness−1 and gcd(step, harness) = 1");
+      p.finish("(for kind = \"satin\")");
+      const int n = pat.satin_harness, k = pat.satin_step;
+      if (n > grid) p.fail_key("harness", "a harness ≤ " + grid_txt, std::to_string(n));
+      if (!(k > 1 && k < n - 1 && std::gcd(k, n) == 1))
+        p.fail_key("step", "an integer with 1 < step < harness−1" + eq(n - 1) + " and gcd(step, harness" + eq(n) + ") = 1",
+                   std::to_string(k));
+      return;
+    }
+  }
+}
+
+void read_cloth(TableReader& top, Scene& s, const std::map<std::string, YarnTypeDef>& defs) {
+  auto c = top.subtable("cloth");
+  const std::string yarns_expected = "an integer ≥ 3 and ≤ " + std::to_string(kMaxYarns);
+  auto yarn_count = [](long long x) { return x >= 3 && x <= kMaxYarns; };
+  const std::string names_expected = "a non-empty array of yarn type names (strings)";
+  if (c) {
+    c->read_int("warps", s.warps, yarns_expected, yarn_count);
+    c->read_int("wefts", s.wefts, yarns_expected, yarn_count);
+    c->read_number("spacing_m", s.spacing_m, "a number > 0 (m)", positive);
+    const double L = s.spacing_m;
+    c->read_number("radius_m", s.radius_m, "a number > 0 and < cloth.spacing_m" + eq(L),
+                   [L](double r) { return r > 0.0 && r < L; });
+    if (s.radius_m >= s.spacing_m)  // only reachable with the default radius
+      c->fail_key("spacing_m", "a number > cloth.radius_m" + eq(s.radius_m), format_number(s.spacing_m));
+    c->read_bool("sliding", s.sliding);
+    c->read_string_array("warp_yarn_types", s.warp_yarn_types, names_expected);
+    c->read_string_array("weft_yarn_types", s.weft_yarn_types, names_expected);
+    if (auto p = c->subtable("pattern")) read_pattern(*p, s);
+    c->finish();
+  }
+
+  // Every referenced name must exist; "default" exists implicitly.
+  std::string defined;
+  for (const auto& [name, d] : defs) defined += (defined.empty() ? "" : ", ") + name;
+  const std::string expected = "a yarn type defined in [yarn_types] (" +
+                               (defined.empty() ? std::string("none defined") : "defined: " + defined) +
+                               "; \"default\" is always available)";
+  std::set<std::string> used;
+  for (const char* key : {"warp_yarn_types", "weft_yarn_types"}) {
+    const auto& names = std::string(key) == "warp_yarn_types" ? s.warp_yarn_types : s.weft_yarn_types;
+    for (size_t k = 0; k < names.size(); ++k) {
+      if (names[k] != "default" && !defs.count(names[k])) {
+        const toml::node* arr = c ? c->table().get(key) : nullptr;
+        const toml::node* elem = arr && arr->as_array() ? arr->as_array()->get(k) : nullptr;
+        if (elem) c->fail_at(*elem, key, expected);
+        top.source().fail(c ? c->line() : 1, std::string("cloth.") + key, '"' + names[k] + "\" (the default)", expected);
+      }
+      used.insert(names[k]);
+    }
+  }
+  s.yarn_types.clear();
+  for (const auto& [name, d] : defs) {
+    if (!used.count(name))
+      top.source().fail(d.line, "yarn_types." + name, d.written,
+                        "a yarn type used by cloth.warp_yarn_types or cloth.weft_yarn_types");
+    s.yarn_types[name] = d.type;
+  }
+  if (used.count("default") && !defs.count("default")) s.yarn_types["default"] = YarnType{};
+}
+
+void read_contact(TableReader& top, Scene& s) {
+  auto c = top.subtable("contact");
+  if (!c) return;
+  ContactParams& p = s.contact;
+  int m = 0;
+  if (c->read_choice("shear_model", m, {"gong", "cirio"}))
+    p.shear_model = m == 0 ? ContactParams::ShearModel::gong : ContactParams::ShearModel::cirio;
+  if (c->read_choice("friction_model", m, {"gong", "cirio"}))
+    p.friction_model = m == 0 ? ContactParams::FrictionModel::gong : ContactParams::FrictionModel::cirio;
+  c->read_number("shear_modulus_Pa", p.shear_modulus_Pa, "a number ≥ 0 (Pa)", non_negative);
+  c->read_number("friction_coefficient", p.friction_coefficient, "a number ≥ 0", non_negative);
+  c->read_number("friction_stiffness_N_per_m", p.friction_stiffness_N_per_m, "a number ≥ 0 (N/m)", non_negative);
+  c->read_number("friction_damping_Ns_per_m", p.friction_damping_Ns_per_m, "a number ≥ 0 (N·s/m)", non_negative);
+  c->read_number("tanh_sharpness_per_m", p.tanh_sharpness_per_m, "a number > 0 (1/m)", positive);
+  c->read_number("parallel_stiffness_N_per_m2", p.parallel_stiffness_N_per_m2, "a number ≥ 0 (N/m²)", non_negative);
+  c->read_number("lock_exponent", p.lock_exponent, "a number ≥ 0", non_negative);
+  c->read_number("lock_sigma", p.lock_sigma, "a number > 0", positive);
+  c->finish();
+}
+
+void read_pose(TableReader& top, Scene& s) {
+  auto p = top.subtable("pose");
+  if (!p) return;
+  int kind = 0;
+  if (p->read_choice("kind", kind, {"flat", "upright"})) s.pose = kind == 0 ? Scene::Pose::flat : Scene::Pose::upright;
+  p->read_number("height_m", s.height_m, "a number (m)");
+  p->finish();
+}
+
+void read_fem(TableReader& top, Scene& s) {
+  auto f = top.subtable("fem");
+  if (!f) return;
+  FemSettings& fem = s.fem;
+  f->read_int("stride", fem.stride, "an integer ≥ 1", [](long long x) { return x >= 1; });
+  if ((s.wefts - 1) % fem.stride != 0 || (s.warps - 1) % fem.stride != 0)
+    f->fail_key("stride",
+                "an integer ≥ 1 dividing cloth.wefts − 1" + eq(s.wefts - 1) + " and cloth.warps − 1" + eq(s.warps - 1),
+                std::to_string(fem.stride));
+  namespace fs = std::filesystem;
+  const fs::path base = fs::path(s.source).parent_path();
+  for (auto [key, out] : {std::pair<const char*, std::string*>{"mesh_file", &fem.mesh_file},
+                          std::pair<const char*, std::string*>{"parameter_file", &fem.parameter_file}}) {
+    std::string rel;
+    if (!f->read_string(key, rel, "a non-empty path (string), relative to the scene file's directory",
+                        [](const std::string& x) { return !x.empty(); }))
+      continue;
+    const fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : (base / rel).lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec))
+      f->fail_at(*f->table().get(key), key,
+                 "an existing file, relative to the scene file's directory (looked for " + p.string() + ")");
+    *out = p.string();
+  }
+  f->read_number("areal_density_kg_per_m2", fem.areal_density_kg_per_m2, "a number > 0 (kg/m²)", positive);
+  f->read_number("warp_stretch_N_per_m", fem.warp_stretch_N_per_m, "a number > 0 (N/m)", positive);
+  f->read_number("weft_stretch_N_per_m", fem.weft_stretch_N_per_m, "a number > 0 (N/m)", positive);
+  f->read_number("shear_N_per_m", fem.shear_N_per_m, "a number > 0 (N/m)", positive);
+  f->read_number("shear_lock_angle_rad", fem.shear_lock_angle_rad, "a number > 0 (rad)", positive);
+  f->read_number("shear_lock_exponent", fem.shear_lock_exponent, "a number > 0", positive);
+  f->read_number("warp_bending_N_m", fem.warp_bending_N_m, "a number > 0 (N·m)", positive);
+  f->read_number("weft_bending_N_m", fem.weft_bending_N_m, "a number > 0 (N·m)", positive);
+  f->finish();
+}
+
+// node = [i, j] inside the grid, not used twice, on the FEM lattice when stride > 1.
+NodeRef read_node(TableReader& t, const Scene& s, std::map<std::pair<int, int>, std::string>& taken) {
+  const std::string expected = "[i, j] with integers 0 ≤ i < cloth.wefts" + eq(s.wefts) +
+                               " and 0 ≤ j < cloth.warps" + eq(s.warps);
+  const toml::node* n = t.get("node");
+  if (!n) t.fail_missing("node", expected);
+  const auto* a = n->as_array();
+  if (!a || a->size() != 2 || !a->get(0)->as_integer() || !a->get(1)->as_integer()) t.fail_at(*n, "node", expected);
+  const long long i = a->get(0)->as_integer()->get(), j = a->get(1)->as_integer()->get();
+  if (i < 0 || i >= s.wefts || j < 0 || j >= s.warps) t.fail_at(*n, "node", expected);
+  const int st = s.fem.stride;
+  if (st > 1 && (i % st != 0 || j % st != 0))
+    t.fail_at(*n, "node", "a node on the FEM lattice: i and j multiples of fem.stride" + eq(st));
+  const auto key = std::make_pair(static_cast<int>(i), static_cast<int>(j));
+  if (auto it = taken.find(key); it != taken.end())
+    t.fail_at(*n, "node", "a node not already pinned or held (" + it->second + " uses it)");
+  taken[key] = t.key_path("node");
+  return NodeRef{static_cast<int>(i), static_cast<int>(j)};
+}
+
+void read_boundary(TableReader& top, Scene& s) {
+  std::map<std::pair<int, int>, std::string> taken;
+  for (TableReader& p : top.table_array("pins")) {
+    s.pins.push_back(read_node(p, s, taken));
+    p.finish();
+  }
+  for (TableReader& h : top.table_array("handles")) {
+    Handle handle;
+    handle.node = read_node(h, s, taken);
+    h.read_number("stiffness_N_per_m", handle.stiffness_N_per_m, "a number > 0 (N/m)", positive);
+    h.finish();
+    s.handles.push_back(handle);
+  }
+}
+
+void read_loads(TableReader& top, Scene& s) {
+  if (auto g = top.subtable("gravity")) {
+    g->read_vec3("acceleration_m_per_s2", s.gravity_m_per_s2, "an array of 3 numbers [x, y, z] (m/s²)");
+    g->finish();
+  }
+  if (auto w = top.subtable("wind")) {
+    w->read_vec3("velocity_m_per_s", s.wind_velocity_m_per_s, "an array of 3 numbers [x, y, z] (m/s)");
+    w->read_number("air_density_kg_per_m3", s.air_density_kg_per_m3, "a number ≥ 0 (kg/m³)", non_negative);
+    w->read_number("drag_Ns_per_m3", s.wind_drag_Ns_per_m3, "a number ≥ 0 (N·s/m³)", non_negative);
+    w->finish();
+  }
+}
+
+void read_time(TableReader& top, Scene& s) {
+  auto t = top.subtable("time");
+  if (!t) return;
+  t->read_number("duration_s", s.duration_s, "a number > 0 (s)", positive);
+  t->read_number("dt_s", s.dt_s, "a number > 0 (s)", positive);
+  if (s.dt_s > s.duration_s)
+    t->fail_key(t->table().get("dt_s") ? "dt_s" : "duration_s",
+                t->table().get("dt_s") ? "a number > 0 and ≤ time.duration_s" + eq(s.duration_s)
+                                       : "a number ≥ time.dt_s" + eq(s.dt_s),
+                format_number(s.duration_s));
+  t->read_number("output_interval_s", s.output_interval_s, "a number ≥ time.dt_s" + eq(s.dt_s),
+                 [&](double x) { return x >= s.dt_s; });
+  if (s.output_interval_s < s.dt_s)  // only reachable with the default interval
+    t->fail_key("dt_s", "a number ≤ time.output_interval_s" + eq(s.output_interval_s), format_number(s.dt_s));
+  t->read_string("integrator", s.integrator, "a non-empty integrator name (string)",
+                 [](const std::string& x) { return !x.empty(); });
+  t->read_bool("adaptive", s.adaptive);
+  t->read_number("rtol", s.rtol, "a number > 0 and < 1", [](double x) { return x > 0.0 && x < 1.0; });
+  t->read_number("atol", s.atol, "a number > 0", positive);
+  t->finish();
+}
+
+void read_terms(TableReader& top, Scene& s) {
+  auto t = top.subtable("terms");
+  if (!t) return;
+  TermSwitches& w = s.terms;
+  t->read_bool("stretch", w.stretch);
+  t->read_bool("bending", w.bending);
+  t->read_bool("shear", w.shear);
+  t->read_bool("parallel_contact", w.parallel_contact);
+  t->read_bool("friction", w.friction);
+  t->read_bool("gravity", w.gravity);
+  t->read_bool("wind", w.wind);
+  t->read_bool("handles", w.handles);
+  t->read_bool("inertia", w.inertia);
+  t->finish();
+}
+
+}  // namespace
+
+SceneError::SceneError(std::string file_, int line_, std::string key_, std::string value_, std::string expected_)
+    : std::runtime_error(file_ + ":" + std::to_string(line_) + ": key '" + key_ + "': got " + value_ + ", expected " +
+                         expected_),
+      file(std::move(file_)),
+      key(std::move(key_)),
+      value(std::move(value_)),
+      expected(std::move(expected_)),
+      line(line_) {}
+
+Scene parse_scene(const std::string& toml_text, const std::string& source_name) {
+  const Source src(toml_text, source_name);
+  toml::table root;
+  try {
+    root = toml::parse(std::string_view(toml_text), std::string_view(source_name));
+  } catch (const toml::parse_error& e) {
+    const int line = static_cast<int>(e.source().begin.line);
+    const std::string text = src.line_text(line);
+    src.fail(line, "(syntax)", text.empty() ? "(end of line)" : text,
+             "valid TOML (" + std::string(e.description()) + ")");
+  }
+
+  Scene s;
+  s.source = source_name;
+  TableReader top(src, root, "");
+  // Unknown tables first: a misspelt table name is the likeliest error.
+  top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "time", "terms", "fem"});
+  top.finish();
+  const auto yarn_defs = read_yarn_types(top);
+  read_cloth(top, s, yarn_defs);
+  read_contact(top, s);
+  read_pose(top, s);
+  read_fem(top, s);
+  read_boundary(top, s);
+  read_loads(top, s);
+  read_time(top, s);
+  read_terms(top, s);
+  return s;
+}
+
+Scene load_scene(const std::string& path) {
+  auto unreadable = [&] { return SceneError(path, 0, "(file)", path, "a readable scene file"); };
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw unreadable();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw unreadable();
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw unreadable();
+  return parse_scene(text.str(), path);
+}
+
+}  // namespace wl

@@ -1,0 +1,54 @@
+// Contact normal n and normal force F_n at every crossing of the woven grid,
+// physics.md §3.6 (seed 003 eq. 3, §3.3) with the crimp of Appendix A.
+//
+//   n    smallest-eigenvalue eigenvector of Σ(x_k − x̄)(x_k − x̄)ᵀ over the node
+//        and its (up to) 4 grid neighbours (best-fit plane), oriented along
+//        n_plane = (x_{i+1,j} − x_{i−1,j}) × (x_{i,j+1} − x_{i,j−1}) (the
+//        +u × +v direction: +z for a sheet x = (iL, jL, 0)), then multiplied by
+//        s_ij = grid.sign(i, j), so it points from warp to weft (§1.5).
+//        Ring nodes use the same fit with the neighbours they have, and
+//        one-sided differences in n_plane (a missing neighbour is replaced by
+//        the node itself).
+//   F_n  = ReLU(½ nᵀ(F^u − F^v)), where F^u is the total stretch + bending force
+//        on the node from its warp, evaluated on the crimped copy of that warp
+//        (every warp node k moved to x_k − R n_k), and F^v the same from its
+//        weft with nodes at x_k + R n_k. "Total" means every stretch segment and
+//        bending stencil of that yarn containing the node (two segments, up to
+//        three bending stencils). F_n = 0 on the outer ring.
+//
+// F_n is a frozen input of the terms that use it: no derivative is provided.
+// compute() allocates nothing and costs O(nodes).
+#pragma once
+#include <vector>
+
+#include "models/core/types.h"
+#include "models/yarn/woven_grid.h"
+
+namespace wl {
+
+class ContactNormals {
+ public:
+  // warp_* indexed by warp j (size grid.nv()), weft_* by weft i (size grid.nu());
+  // k_s = Y·πR² (N), k_b = B·πR²; radius R (m). Throws std::invalid_argument on
+  // wrong sizes, negative/non-finite stiffness or non-positive radius.
+  ContactNormals(const WovenGrid& grid, std::vector<double> warp_ks, std::vector<double> warp_kb,
+                 std::vector<double> weft_ks, std::vector<double> weft_kb, double radius);
+
+  // q: the full state (size grid.num_dofs()); frozen u/v come from grid.constants().
+  void compute(const Vec& q);
+
+  const std::vector<double>& normal_force() const { return fn_; }  // per node id
+  const std::vector<Vec3>& normal() const { return n_; }           // per node id, unit, warp → weft
+  // Forces on each node from its warp (F^u) and weft (F^v) on the crimped copies.
+  const std::vector<Vec3>& warp_force() const { return fu_; }
+  const std::vector<Vec3>& weft_force() const { return fv_; }
+
+ private:
+  WovenGrid grid_;
+  std::vector<double> warp_ks_, warp_kb_, weft_ks_, weft_kb_;
+  double R_;
+  std::vector<Vec3> x_, n_, xw_, xf_, fu_, fv_;
+  std::vector<double> u_, v_, fn_;
+};
+
+}  // namespace wl

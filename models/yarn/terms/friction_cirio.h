@@ -1,0 +1,60 @@
+// Cirio's stick/slip sliding friction on one Eulerian DoF of one crossing,
+// physics.md §3.7(a), seed 004 §3.4:
+//   stick: F = −k_f (u − ū) − d_f u̇
+//   slip:  F = −sign(u − ū) μF_n − d_f u̇
+//
+// The switch (not stated in the seeds) is a return mapping done in
+// accept_step on the accepted state: if k_f|u − ū| > μF_n the crossing slips,
+// the anchor is moved so that k_f|u − ū| = μF_n and the slip direction
+// sign(u − ū) is stored; otherwise it sticks. The mode (stick, slip+ or slip−)
+// is then HELD FIXED for the whole next step, so evaluate() is linear (stick)
+// or constant (slip) in u: smooth within a step, with ∂F/∂u = −k_f or 0 and
+// ∂F/∂u̇ = −d_f. Consequences: a switch lags by at most one step (a sticking
+// spring can exceed μF_n during the step in which it breaks loose), and the
+// force is continuous at a stick→slip switch because the moved anchor gives
+// exactly k_f|u − ū| = μF_n. A slipping crossing whose motion reverses is
+// found back inside the cone at the next accept_step and sticks again.
+//
+// F_n is a FROZEN input read in prepare() (∂F_n/∂u is ignored). The term runs
+// in stage 1 like Gong's friction; it does not use F_u.
+//
+// Local stencil (u0): one sliding DoF; the model adds one element for u and one
+// for v of every sliding crossing.
+#pragma once
+#include <vector>
+
+#include "models/core/term.h"
+
+namespace wl {
+
+class CirioFrictionTerm : public StencilTerm<1> {
+ public:
+  // Same parameters as GongFrictionTerm; p (tanh sharpness) is validated but
+  // unused: the stick/slip switch here is discrete, between steps.
+  CirioFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df, double p);
+
+  void add(int dof, int node, double anchor0);
+
+  std::string name() const override { return "friction"; }
+  bool conservative() const override { return false; }
+  bool has_velocity_jacobian() const override { return true; }
+  int stage() const override { return 1; }
+  void prepare(const EvalContext& ctx) override;
+  void accept_step(const EvalContext& ctx, double h) override;
+  double energy(int, const double*) const override { return 0.0; }
+  void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+
+  // Per element: 0 = stick, 1 = slip (the mode held for the current step).
+  std::vector<double> sliding_state() const;
+  double anchor(int e) const { return anchor_[e]; }
+  int slip_direction(int e) const { return mode_[e]; }  // 0 stick, ±1 slip along ±u
+  double contact_force(int e) const { return Fn_[e]; }  // frozen F_n
+
+ private:
+  const std::vector<double>* normal_force_;
+  double mu_, kf_, df_;
+  std::vector<int> node_, mode_;
+  std::vector<double> anchor_, Fn_;
+};
+
+}  // namespace wl

@@ -1,0 +1,92 @@
+#include "models/yarn/terms/friction_gong.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace wl {
+
+// A = k_f δu − K_δ μF_n, B = k_f δu + K_δ μF_n, K_δ = tanh(p δu), K₂ = tanh(p(μF_n − |F_u|));
+// F = −(A K₂ + B)/2 and, physics.md §3.7(b) with I-27 (p restored, sign of the
+// F_u term flipped) and I-28 (|F_u|):
+//   ∂F/∂δu  = −½(k_f − p(1−K_δ²)μF_n) K₂ − ½(k_f + p(1−K_δ²)μF_n)
+//   ∂F/∂F_u = +½ A p (1−K₂²) sign(F_u)
+//   ∂F/∂F_n = ½ K_δ μ K₂ − ½ A p (1−K₂²) μ − ½ K_δ μ
+GongFrictionResponse gong_friction_law(double delta_u, double F_u, double F_n, double mu, double kf, double p) {
+  const double Kd = std::tanh(p * delta_u);
+  const double K2 = std::tanh(p * (mu * F_n - std::abs(F_u)));
+  const double A = kf * delta_u - Kd * mu * F_n;
+  const double B = kf * delta_u + Kd * mu * F_n;
+  const double dKd = p * (1.0 - Kd * Kd), dK2 = p * (1.0 - K2 * K2);
+  const double sgn = F_u > 0.0 ? 1.0 : (F_u < 0.0 ? -1.0 : 0.0);
+  GongFrictionResponse r;
+  r.force = -0.5 * (A * K2 + B);
+  r.d_delta = -0.5 * (kf - dKd * mu * F_n) * K2 - 0.5 * (kf + dKd * mu * F_n);
+  r.d_Fu = 0.5 * A * dK2 * sgn;
+  r.d_Fn = 0.5 * Kd * mu * K2 - 0.5 * A * dK2 * mu - 0.5 * Kd * mu;
+  return r;
+}
+
+GongFrictionTerm::GongFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df,
+                                   double p)
+    : normal_force_(normal_force), mu_(mu), kf_(kf), df_(df), p_(p) {
+  std::ostringstream bad;
+  if (!(mu >= 0.0)) bad << "mu = " << mu << " (expected >= 0)";
+  else if (!(kf >= 0.0)) bad << "kf = " << kf << " (expected >= 0)";
+  else if (!(df >= 0.0)) bad << "df = " << df << " (expected >= 0)";
+  else if (!(p > 0.0)) bad << "p = " << p << " (expected > 0)";
+  if (!bad.str().empty()) throw std::invalid_argument("GongFrictionTerm: " + bad.str());
+}
+
+void GongFrictionTerm::add(int dof, int node, double anchor0) {
+  if (normal_force_ && (node < 0 || node >= static_cast<int>(normal_force_->size()))) {
+    std::ostringstream msg;
+    msg << "GongFrictionTerm: node " << node << " outside the normal-force table of size " << normal_force_->size();
+    throw std::invalid_argument(msg.str());
+  }
+  stencils_.push_back({dof});
+  node_.push_back(node);
+  anchor_.push_back(anchor0);
+  Fu_.push_back(0.0);
+  Fn_.push_back(0.0);
+}
+
+void GongFrictionTerm::prepare(const EvalContext& ctx) {
+  for (int e = 0; e < num_elements(); ++e) {
+    const int dof = stencils_[e][0];
+    Fu_[e] = ctx.force_so_far && is_dof(dof) ? (*ctx.force_so_far)[dof] : 0.0;
+    Fn_[e] = normal_force_ ? (*normal_force_)[node_[e]] : 0.0;
+  }
+}
+
+double GongFrictionTerm::slide_indicator(double Fu, double Fn) const {
+  return 1.0 / (1.0 + std::exp(-kSlideSharpness * (std::abs(Fu) - mu_ * Fn)));
+}
+
+// ū += sigmoid(10⁴(|F_u| − μF_n)) u̇ h (Appendix A). F_u is taken from the
+// context when the caller provides the stage-0 force of the accepted state,
+// otherwise from the last prepare(); F_n is the current table value.
+void GongFrictionTerm::accept_step(const EvalContext& ctx, double h) {
+  for (int e = 0; e < num_elements(); ++e) {
+    const int dof = stencils_[e][0];
+    if (!is_dof(dof) || !ctx.v) continue;
+    const double Fu = ctx.force_so_far ? (*ctx.force_so_far)[dof] : Fu_[e];
+    const double Fn = normal_force_ ? (*normal_force_)[node_[e]] : 0.0;
+    anchor_[e] += slide_indicator(Fu, Fn) * (*ctx.v)[dof] * h;
+  }
+}
+
+void GongFrictionTerm::evaluate(int e, const double* q, const double* v, const ElementOutput& out) const {
+  const GongFrictionResponse r = gong_friction_law(q[0] - anchor_[e], Fu_[e], Fn_[e], mu_, kf_, p_);
+  out.force[0] = r.force - df_ * v[0];
+  if (out.dfdq) out.dfdq[0] = r.d_delta;
+  if (out.dfdv) out.dfdv[0] = -df_;
+}
+
+std::vector<double> GongFrictionTerm::sliding_state() const {
+  std::vector<double> s(num_elements());
+  for (int e = 0; e < num_elements(); ++e) s[e] = slide_indicator(Fu_[e], Fn_[e]);
+  return s;
+}
+
+}  // namespace wl

@@ -1,0 +1,32 @@
+// Contact between the two parallel yarns that cross a segment at its ends, as a
+// penalty in Eulerian space (physics.md §3.5, seed 000 eqs. 72–74, seed 003
+// eqs. 55–58). Local stencil (u0, u1):
+//   V = ½ k_c L ReLU(d − Δu)²,  Δu = u1 − u0.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "models/core/term.h"
+
+namespace wl {
+
+class ParallelContactTerm : public StencilTerm<2> {
+ public:
+  // One segment; kc_L = k_c·L in N (≥ 0), d the contact distance in m (> 0).
+  void add(const std::array<int, 2>& stencil, double kc_L, double d);
+
+  std::string name() const override { return "parallel-contact"; }
+  double energy(int e, const double* q) const override;
+  void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+
+ private:
+  std::vector<double> kc_L_, d_;
+};
+
+// Contact distance of the two yarns crossing a segment at its ends, from the
+// over/under signs (±1) of the two crossings: 4R when the segment's yarn
+// passes between them (signs differ), else 2R (physics.md §1.5, I-39).
+double parallel_contact_distance(int sign_a, int sign_b, double R);
+
+}  // namespace wl

@@ -1,0 +1,116 @@
+#include "models/yarn/terms/shear_gong.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "models/yarn/terms/crossing_angle.h"
+
+namespace wl {
+namespace {
+
+constexpr double kRest = std::numbers::pi / 2;  // φ̄
+
+// γ^e for γ ≥ 0; γ = 0 only at φ* = φ̄, where the terms it multiplies vanish.
+double safe_pow(double gamma, double e) { return gamma > 0.0 ? std::pow(gamma, e) : (e == 0.0 ? 1.0 : 0.0); }
+
+}  // namespace
+
+GongShearTerm::GongShearTerm(const std::vector<double>* normal_force, double L, double R, double c, double sigma)
+    : normal_force_(normal_force), L_(L), R_(R), c_(c), sigma_(sigma) {
+  std::ostringstream bad;
+  if (!(L > 0.0)) bad << "L = " << L << " (expected > 0)";
+  else if (!(R > 0.0 && R < L)) bad << "R = " << R << " (expected 0 < R < L = " << L << ")";
+  else if (!(c > 0.0)) bad << "c = " << c << " (expected > 0)";
+  else if (!(sigma > 0.0)) bad << "sigma = " << sigma << " (expected > 0)";
+  if (!bad.str().empty()) throw std::invalid_argument("GongShearTerm: " + bad.str());
+  phi_l_ = 2.0 * std::asin(R / L);
+}
+
+void GongShearTerm::add(const std::array<int, 9>& stencil, int node, double S_pi_R2, bool lock) {
+  if (!(S_pi_R2 >= 0.0)) {
+    std::ostringstream msg;
+    msg << "GongShearTerm: S pi R^2 = " << S_pi_R2 << " (expected >= 0)";
+    throw std::invalid_argument(msg.str());
+  }
+  if (normal_force_ && (node < 0 || node >= static_cast<int>(normal_force_->size()))) {
+    std::ostringstream msg;
+    msg << "GongShearTerm: node " << node << " outside the normal-force table of size " << normal_force_->size();
+    throw std::invalid_argument(msg.str());
+  }
+  stencils_.push_back(stencil);
+  node_.push_back(node);
+  S_pi_R2_.push_back(S_pi_R2);
+  lock_.push_back(lock ? 1 : 0);
+}
+
+double GongShearTerm::normal_force(int e) const { return normal_force_ ? (*normal_force_)[node_[e]] : 0.0; }
+
+// k_sh(φ) and its derivatives, physics.md §3.3(b) "cleaner equivalent", with γ
+// and g at the mirrored angle φ* = φ̄ − |φ − φ̄| (I-34): k(φ) = K(φ*),
+// k′ = K′(φ*) dφ*/dφ with dφ*/dφ = ±1, k″ = K″(φ*).
+GongShearTerm::Stiffness GongShearTerm::stiffness(int e, double phi) const {
+  const double Fn = normal_force(e);
+  Stiffness s;
+  if (!lock_[e]) {
+    s.k = (Fn + 1.0) * S_pi_R2_[e];  // k_sh = (1+F_n) SπR², seed 003 §3.3
+    return s;
+  }
+  const double C = 0.5 * (Fn + 1.0) * S_pi_R2_[e];
+  const double ps = kRest - std::abs(phi - kRest);
+  const double dps = phi <= kRest ? 1.0 : -1.0;
+  const double L = L_, R = R_, c = c_, pb = kRest, pl = phi_l_;
+
+  const double gamma = std::max(0.0, (std::sqrt(2.0) * L - 2.0 * L * std::sin(ps / 2)) / R);
+  const double dgamma = -L / R * std::cos(ps / 2);
+  const double d2gamma = L / (2.0 * R) * std::sin(ps / 2);
+
+  const double pb4 = pb * pb * pb * pb, pb5 = pb4 * pb;
+  const double N = pb5 * (ps - pl);
+  const double P = ps * (ps - pl) * (ps - pb);
+  const double dP = 3.0 * ps * ps - 2.0 * (pl + pb) * ps + pl * pb;
+  const double d2P = 6.0 * ps - 2.0 * (pl + pb);
+  const double D = P * P + pb4 * sigma_ * sigma_;
+  const double dD = 2.0 * P * dP, d2D = 2.0 * (dP * dP + P * d2P);
+  const double g = N / D;
+  const double dg = (pb5 * D - N * dD) / (D * D);
+  const double d2g = -N * d2D / (D * D) - 2.0 * dD * dg / D;
+
+  const double f = std::tanh(g);
+  const double df = (1.0 - f * f) * dg;
+  const double d2f = (1.0 - f * f) * (d2g - 2.0 * f * dg * dg);
+
+  const double gc = safe_pow(gamma, c), gc1 = safe_pow(gamma, c - 1.0), gc2 = safe_pow(gamma, c - 2.0);
+  const double K = C * ((1.0 + gc) + (1.0 - gc) * f);
+  const double dK = C * (c * gc1 * dgamma * (1.0 - f) + (1.0 - gc) * df);
+  const double d2K = C * (c * (c - 1.0) * gc2 * dgamma * dgamma * (1.0 - f) + c * gc1 * d2gamma * (1.0 - f) -
+                          2.0 * c * gc1 * dgamma * df + (1.0 - gc) * d2f);
+  s.k = K;
+  s.dk = dK * dps;
+  s.d2k = d2K;
+  return s;
+}
+
+// V = ½ k_sh(φ) L (φ − φ̄)², seed 003 (51).
+double GongShearTerm::energy(int e, const double* q) const {
+  const CrossingAngle a(q);
+  const double d = a.phi - kRest;
+  return 0.5 * stiffness(e, a.phi).k * L_ * d * d;
+}
+
+// V′ = ½k′La² + kLa, V″ = ½k″La² + 2k′La + kL with a = φ − φ̄; then
+// F = −V′∇φ, ∂F/∂x = −(V″∇φ∇φᵀ + V′H) (physics.md §3.3(b), FD-verified there).
+// A degenerate crossing (φ → 0, π) gets zero force: ∇φ has no direction there.
+void GongShearTerm::evaluate(int e, const double* q, const double*, const ElementOutput& out) const {
+  const CrossingAngle a(q);
+  if (a.degenerate) return;
+  const Stiffness s = stiffness(e, a.phi);
+  const double d = a.phi - kRest;
+  const double dV = 0.5 * s.dk * L_ * d * d + s.k * L_ * d;
+  const double d2V = 0.5 * s.d2k * L_ * d * d + 2.0 * s.dk * L_ * d + s.k * L_;
+  a.write(dV, d2V, out);
+}
+
+}  // namespace wl

@@ -1,0 +1,209 @@
+// Physics of the assembled yarn-level model under backward Euler
+// (issue 2 §7): DoF counts, momentum balance, energy behaviour, the catenary,
+// and the published hanging cloth.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "integrators/backward_euler.h"
+#include "models/scene/scene.h"
+#include "models/yarn/terms/bending.h"
+#include "models/yarn/terms/gravity.h"
+#include "models/yarn/terms/segment_inertia.h"
+#include "models/yarn/terms/stretch.h"
+#include "models/yarn/yarn_model.h"
+
+namespace wl {
+namespace {
+
+Scene small_scene(int n, bool sliding) {
+  Scene s;
+  s.warps = s.wefts = n;
+  s.sliding = sliding;
+  s.yarn_types["default"] = YarnType{};
+  s.gravity_m_per_s2 = {0, 0, 0};
+  s.terms.gravity = s.terms.wind = s.terms.handles = false;
+  s.pose = Scene::Pose::flat;
+  return s;
+}
+
+Vec perturbed(const YarnModel& m, double amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-amplitude, amplitude);
+  Vec q = m.initial_q();
+  for (int k = 0; k < m.grid().num_nodes(); ++k) {
+    const int x = m.grid().dofs(k).x;
+    for (int c = 0; c < 3; ++c) q[x + c] += d(rng);
+  }
+  return q;
+}
+
+double total_energy(YarnModel& m, const Vec& q, const Vec& v) {
+  Evaluation scratch;
+  return kinetic_energy(m, 0.0, q, v, scratch) + m.potential_energy(q);
+}
+
+TEST(YarnModel, DofCountsMatchPhysicsTable) {
+  // physics.md §1.2: l = 3rc + 2(r−2)(c−2); 17×17 → 1317.
+  EXPECT_EQ(YarnModel(small_scene(17, true)).num_dofs(), 1317);
+  EXPECT_EQ(YarnModel(small_scene(5, true)).num_dofs(), 93);
+  EXPECT_EQ(YarnModel(small_scene(17, false)).num_dofs(), 3 * 289);
+}
+
+TEST(YarnModel, InternalForcesSumToZero) {
+  // Without pins, handles, gravity and wind the internal forces balance: the
+  // x-components summed over nodes vanish (translation invariance).
+  for (bool sliding : {true, false}) {
+    YarnModel m(small_scene(7, sliding));
+    const Vec q = perturbed(m, 2e-4, 3);
+    Evaluation ev;
+    allocate_evaluation(m, ev);
+    m.evaluate(0.0, q, Vec::Zero(m.num_dofs()), kForce, ev);
+    Vec3 sum = Vec3::Zero(), scale = Vec3::Zero();
+    for (int k = 0; k < m.grid().num_nodes(); ++k) {
+      sum += ev.force.segment<3>(m.grid().dofs(k).x);
+      scale += ev.force.segment<3>(m.grid().dofs(k).x).cwiseAbs();
+    }
+    EXPECT_GT(scale.norm(), 0.0);
+    EXPECT_LT(sum.norm(), 1e-12 * scale.norm()) << "sliding=" << sliding;
+  }
+}
+
+TEST(YarnModel, BackwardEulerNeverIncreasesEnergy) {
+  // No gravity, wind, handles or friction damping: E = T + V must not grow.
+  for (bool sliding : {false, true}) {
+    Scene s = small_scene(6, sliding);
+    s.terms.friction = false;
+    s.contact.shear_model = ContactParams::ShearModel::cirio;  // Gong's F_n-lagged stiffness is not conservative
+    YarnModel m(s);
+    BackwardEuler be(BackwardEuler::Variant::newton);
+    IntegratorOptions opt;
+    opt.dt = 1e-4;
+    opt.newton_tol = 1e-12;
+    be.initialize(m, 0.0, perturbed(m, 5e-5, 7), Vec::Zero(m.num_dofs()), opt);
+    double e_prev = total_energy(m, be.q(), be.v());
+    const double e0 = e_prev;
+    ASSERT_GT(e0, 0.0);
+    for (int k = 0; k < 60; ++k) {
+      ASSERT_EQ(be.step(opt.dt).outcome, Outcome::ok);
+      const double e = total_energy(m, be.q(), be.v());
+      EXPECT_LE(e, e_prev + 1e-9 * e0) << "step " << k << " sliding=" << sliding;
+      e_prev = e;
+    }
+    EXPECT_LT(e_prev, e0);
+  }
+}
+
+TEST(YarnModel, FreeClothConservesMomentum) {
+  // Internal forces only, constant mass (no sliding): P = Σ M v is conserved by backward Euler.
+  YarnModel m(small_scene(6, false));
+  Evaluation ev;
+  allocate_evaluation(m, ev);
+  Vec v = Vec::Zero(m.num_dofs());
+  std::mt19937 rng(11);
+  std::normal_distribution<double> nd(0.0, 0.05);
+  for (int k = 0; k < v.size(); ++k) v[k] = nd(rng);
+  auto momentum = [&](const Vec& q, const Vec& vel) {
+    m.evaluate(0.0, q, vel, kMass, ev);
+    const Vec p = ev.mass * vel;
+    Vec3 total = Vec3::Zero();
+    for (int k = 0; k < m.grid().num_nodes(); ++k) total += p.segment<3>(m.grid().dofs(k).x);
+    return total;
+  };
+  BackwardEuler be(BackwardEuler::Variant::linear);
+  IntegratorOptions opt;
+  opt.dt = 1e-3;
+  be.initialize(m, 0.0, perturbed(m, 1e-4, 5), v, opt);
+  const Vec3 p0 = momentum(be.q(), be.v());
+  for (int k = 0; k < 50; ++k) ASSERT_EQ(be.step(opt.dt).outcome, Outcome::ok);
+  EXPECT_LT((momentum(be.q(), be.v()) - p0).norm(), 1e-9 * p0.norm());
+}
+
+// A single yarn of N nodes hanging from its two ends (frozen u, 3 DoFs per node).
+class HangingYarn : public TermModel {
+ public:
+  HangingYarn(int n, double length, double span, double rho, double ks, double kb) {
+    const double du = length / (n - 1);
+    num_dofs_ = 3 * n;
+    q0_ = Vec::Zero(num_dofs_);
+    v0_ = Vec::Zero(num_dofs_);
+    constants_.resize(n);
+    for (int i = 0; i < n; ++i) {
+      constants_[i] = i * du;
+      q0_.segment<3>(3 * i) = Vec3(span * i / (n - 1), 0.0, 0.0);
+    }
+    auto inertia = std::make_unique<SegmentInertiaTerm>();
+    auto stretch = std::make_unique<StretchTerm>();
+    auto gravity = std::make_unique<GravityTerm>(Vec3(0, 0, -9.81));
+    auto bending = std::make_unique<BendingTerm>();
+    for (int i = 0; i + 1 < n; ++i) {
+      const std::array<int, 8> s{3 * i, 3 * i + 1, 3 * i + 2, 3 * i + 3, 3 * i + 4, 3 * i + 5,
+                                 encode_constant(i), encode_constant(i + 1)};
+      inertia->add(s, rho);
+      stretch->add(s, ks);
+      gravity->add(s, rho);
+    }
+    for (int i = 1; i + 1 < n; ++i)
+      bending->add({3 * i, 3 * i + 1, 3 * i + 2, 3 * i + 3, 3 * i + 4, 3 * i + 5, 3 * i - 3, 3 * i - 2, 3 * i - 1,
+                    encode_constant(i + 1), encode_constant(i - 1)},
+                   kb);
+    terms_.push_back(std::move(inertia));
+    terms_.push_back(std::move(stretch));
+    terms_.push_back(std::move(gravity));
+    terms_.push_back(std::move(bending));
+    fixed_ = {0, 1, 2, 3 * n - 3, 3 * n - 2, 3 * n - 1};
+    finalize();
+  }
+  std::string name() const override { return "hanging-yarn"; }
+  bool mass_depends_on_q() const override { return false; }
+  Frame frame(double, const Vec&, const Vec&) override { return {}; }
+  std::map<std::string, std::string> describe() const override { return {}; }
+};
+
+TEST(YarnModel, HangingYarnSettlesToCatenary) {
+  // Nearly inextensible yarn (strain ~1e-5) of length S between supports D apart:
+  // sag = a(cosh(D/2a) − 1) with S = 2a sinh(D/2a).
+  const int n = 41;
+  const double S = 0.1, D = 0.08, rho = 0.002, ks = 5e3, kb = 1e-10;
+  HangingYarn m(n, S, D, rho, ks, kb);
+  BackwardEuler be(BackwardEuler::Variant::newton);
+  IntegratorOptions opt;
+  opt.dt = 0.02;
+  opt.newton_max_iters = 50;
+  be.initialize(m, 0.0, m.initial_q(), m.initial_v(), opt);
+  for (int k = 0; k < 400; ++k) ASSERT_EQ(be.step(opt.dt).outcome, Outcome::ok) << "step " << k;
+  EXPECT_LT(be.v().lpNorm<Eigen::Infinity>(), 1e-6);
+  const double sag = -be.q()[3 * (n / 2) + 2];
+  double lo = 1e-4, hi = 10.0;  // bisection for a: 2a sinh(D/2a) decreases in a
+  for (int it = 0; it < 200; ++it) {
+    const double a = 0.5 * (lo + hi);
+    (2 * a * std::sinh(D / (2 * a)) > S ? lo : hi) = a;
+  }
+  const double a = 0.5 * (lo + hi);
+  const double expected = a * (std::cosh(D / (2 * a)) - 1.0);
+  EXPECT_NEAR(sag, expected, 0.01 * expected) << "sag " << sag << " vs catenary " << expected;
+}
+
+TEST(YarnModel, PublishedHangingClothSwingsDownwind) {
+  Scene s = load_scene(std::string(WEAVELAB_SOURCE_DIR) + "/experiments/scenes/hanging_wind.toml");
+  for (const char* name : {"be-linear", "be-newton"}) {
+    YarnModel m(s);
+    BackwardEuler be(std::string(name) == "be-linear" ? BackwardEuler::Variant::linear
+                                                     : BackwardEuler::Variant::newton);
+    IntegratorOptions opt;
+    opt.dt = s.dt_s;
+    be.initialize(m, 0.0, m.initial_q(), m.initial_v(), opt);
+    const StepResult r = be.advance_to(0.1);
+    ASSERT_EQ(r.outcome, Outcome::ok) << name << ": " << r.message;
+    ASSERT_TRUE(be.q().allFinite());
+    double mean_dy = 0.0;
+    for (int k = 0; k < m.grid().num_nodes(); ++k)
+      mean_dy += be.q()[m.grid().dofs(k).x + 1] - m.initial_q()[m.grid().dofs(k).x + 1];
+    EXPECT_GT(mean_dy / m.grid().num_nodes(), 0.0) << name;
+  }
+}
+
+}  // namespace
+}  // namespace wl
