@@ -1,0 +1,15 @@
+// The run summary JSON: scene, model, integrator, options, statistics,
+// outcome, git revision and machine (design.md "Conventions", Output).
+#pragma once
+#include <filesystem>
+
+#include "experiments/driver/run.h"
+#include "integrators/integrator.h"
+#include "models/core/model.h"
+
+namespace wl {
+
+void write_run_summary(const std::filesystem::path& path, const Scene& scene, const RunOptions& options,
+                       const Model& model, const Integrator& integrator, const RunReport& report);
+
+}  // namespace wl
