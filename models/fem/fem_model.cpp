@@ -3,13 +3,14 @@
 #include <cmath>
 #include <sstream>
 
+#include "models/common/wind.h"
 #include "models/fem/deformation_gradient.h"
 #include "models/fem/terms/hinge_bending.h"
 #include "models/fem/terms/in_plane_shear.h"
 #include "models/fem/terms/lumped_mass.h"
 #include "models/fem/terms/nodal_gravity.h"
 #include "models/fem/terms/warp_weft_stretch.h"
-// TODO(merge): #include "models/yarn/terms/handle_spring.h"
+#include "models/yarn/terms/handle_spring.h"
 
 namespace wl {
 namespace {
@@ -93,8 +94,13 @@ void FemModel::build() {
     for (int i = 0; i < nv; ++i) t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
     terms_.push_back(std::move(t));
   }
-  // TODO(wind): WindTerm from models/common/wind.h once it is on main.
-#if 0  // TODO(merge): HandleSpringTerm is on main
+  // Wind: the yarn model's term and parameters, on every triangle (physics.md §3.9).
+  const Vec3 wind(scene_.wind_velocity_m_per_s[0], scene_.wind_velocity_m_per_s[1], scene_.wind_velocity_m_per_s[2]);
+  if (on.wind && (scene_.air_density_kg_per_m3 > 0 || scene_.wind_drag_Ns_per_m3 > 0)) {
+    auto t = std::make_unique<WindTerm>(wind, scene_.air_density_kg_per_m3, scene_.wind_drag_Ns_per_m3);
+    for (const auto& tri : mesh_.triangles) t->add(triangle_stencil(tri));
+    terms_.push_back(std::move(t));
+  }
   if (on.handles && !scene_.handles.empty()) {
     auto t = std::make_unique<HandleSpringTerm>();
     for (const Handle& h : scene_.handles) {
@@ -103,7 +109,6 @@ void FemModel::build() {
     }
     terms_.push_back(std::move(t));
   }
-#endif
   for (const NodeRef& p : scene_.pins) {
     const int v = vertex_of_node(p);
     for (int c = 0; c < 3; ++c) fixed_.push_back(3 * v + c);
