@@ -63,4 +63,21 @@ inline Eigen::Matrix<double, 6, 9> column_map(const TriangleRest& r) {
   return c;
 }
 
+// The same without forming C (assembly-speed form): writes s·Cᵀ(g_u; g_v) into
+// f (9) and s·Cᵀ[H_uu H_uv; H_uvᵀ H_vv]C into k (9×9, column-major).
+inline void add_column_gradient(const TriangleRest& r, const Vec3& gu, const Vec3& gv, double s, double* f) {
+  for (int k = 0; k < 3; ++k) Eigen::Map<Vec3>(f + 3 * k) += s * (r.a[k] * gu + r.b[k] * gv);
+}
+inline void add_column_hessian(const TriangleRest& r, const Mat3& huu, const Mat3& huv, const Mat3& hvv, double s,
+                               double* k) {
+  Eigen::Map<Eigen::Matrix<double, 9, 9>> K(k);
+  for (int m = 0; m < 3; ++m)
+    for (int n = m; n < 3; ++n) {
+      const Mat3 b = s * (r.a[m] * r.a[n] * huu + r.a[m] * r.b[n] * huv + r.b[m] * r.a[n] * huv.transpose() +
+                          r.b[m] * r.b[n] * hvv);
+      K.block<3, 3>(3 * m, 3 * n) += b;
+      if (n != m) K.block<3, 3>(3 * n, 3 * m) += b.transpose();
+    }
+}
+
 }  // namespace wl

@@ -48,19 +48,17 @@ void InPlaneShearTerm::evaluate(int e, const double* q, const double*, const Ele
   const Mat3 I = Mat3::Identity();
   const Mat3 Pu = I - p * p.transpose(), Pv = I - n * n.transpose();
   // ∂²s: H_uu = −(p g_uᵀ + g_u pᵀ)/l_u − s P_u/l_u², H_uv = (P_v/l_v − p g_vᵀ)/l_u, H_vv likewise.
-  Eigen::Matrix<double, 6, 6> hs;
-  hs.topLeftCorner<3, 3>() = -(p * gu.transpose() + gu * p.transpose()) / lu - s * Pu / (lu * lu);
-  hs.bottomRightCorner<3, 3>() = -(n * gv.transpose() + gv * n.transpose()) / lv - s * Pv / (lv * lv);
-  hs.topRightCorner<3, 3>() = (Pv / lv - p * gv.transpose()) / lu;
-  hs.bottomLeftCorner<3, 3>() = hs.topRightCorner<3, 3>().transpose();
-  Eigen::Matrix<double, 6, 1> gs;
-  gs << gu, gv;
+  const Mat3 huu = -(p * gu.transpose() + gu * p.transpose()) / lu - s * Pu / (lu * lu);
+  const Mat3 hvv = -(n * gv.transpose() + gv * n.transpose()) / lv - s * Pv / (lv * lv);
+  const Mat3 huv = (Pv / lv - p * gv.transpose()) / lu;
   double ps, dps, ddps;
   psi(s, &ps, &dps, &ddps);
   const double c = r.area * 0.5 * k_;
-  const Eigen::Matrix<double, 6, 9> cm = column_map(r);
-  VecMap(out.force) = -c * dps * (cm.transpose() * gs);
-  if (out.dfdq) MatMap(out.dfdq) = -c * cm.transpose() * (ddps * gs * gs.transpose() + dps * hs) * cm;
+  // V = c ψ(s): ∇V = c ψ' ∇s, ∇²V = c (ψ'' ∇s∇sᵀ + ψ' ∇²s), mapped to x by C (deformation_gradient.h).
+  add_column_gradient(r, gu, gv, -c * dps, out.force);
+  if (out.dfdq)
+    add_column_hessian(r, ddps * gu * gu.transpose() + dps * huu, ddps * gu * gv.transpose() + dps * huv,
+                       ddps * gv * gv.transpose() + dps * hvv, -c, out.dfdq);
 }
 
 }  // namespace wl

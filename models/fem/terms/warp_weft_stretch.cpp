@@ -33,13 +33,13 @@ double WarpWeftStretchTerm::energy(int e, const double* q) const {
 
 void WarpWeftStretchTerm::evaluate(int e, const double* q, const double*, const ElementOutput& out) const {
   const TriangleRest& r = rest_[e];
-  Eigen::Matrix<double, 6, 1> g;
-  Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero();
-  stretch_derivatives(k_u_, warp_vector(r, q), g.head<3>(), h.topLeftCorner<3, 3>());
-  stretch_derivatives(k_v_, weft_vector(r, q), g.tail<3>(), h.bottomRightCorner<3, 3>());
-  const Eigen::Matrix<double, 6, 9> c = column_map(r);
-  VecMap(out.force) = -r.area * c.transpose() * g;
-  if (out.dfdq) MatMap(out.dfdq) = -r.area * c.transpose() * h * c;
+  Vec3 gu, gv;
+  Mat3 huu, hvv;
+  stretch_derivatives(k_u_, warp_vector(r, q), gu, huu);
+  stretch_derivatives(k_v_, weft_vector(r, q), gv, hvv);
+  // f = −A Cᵀ∇ψ, ∂f/∂x = −A Cᵀ∇²ψ C (deformation_gradient.h); no u–v coupling.
+  add_column_gradient(r, gu, gv, -r.area, out.force);
+  if (out.dfdq) add_column_hessian(r, huu, Mat3::Zero(), hvv, -r.area, out.dfdq);
 }
 
 }  // namespace wl
