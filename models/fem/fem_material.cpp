@@ -129,6 +129,7 @@ void write_fem_parameter_file(const std::string& path, const FemMaterial& m, con
 FemMaterial fem_material(const Scene& s) {
   FemMaterial m = default_fem_material(s);
   const FemSettings& f = s.fem;
+  if (!f.parameter_file.empty()) m = read_fem_parameter_file(f.parameter_file, m);
   auto set = [](double& out, const std::optional<double>& v) {
     if (v) out = *v;
   };
@@ -140,7 +141,6 @@ FemMaterial fem_material(const Scene& s) {
   set(m.shear_lock_exponent, f.shear_lock_exponent);
   set(m.warp_bending_N_m, f.warp_bending_N_m);
   set(m.weft_bending_N_m, f.weft_bending_N_m);
-  if (!f.parameter_file.empty()) m = read_fem_parameter_file(f.parameter_file, m);
   return m;
 }
 

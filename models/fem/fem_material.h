@@ -14,8 +14,10 @@
 //        areal_density_kg_per_m2 = (ρ_warp + ρ_weft)/L  (means over yarns), so that
 //                               both models carry the same mass per area (up to
 //                               the yarn ends at the border);
-//   2. the scene's [fem] table (Scene::fem);
-//   3. the parameter file scene.fem.parameter_file, if given.
+//   2. the parameter file scene.fem.parameter_file, if given (calibrated values);
+//   3. values given explicitly in the scene's [fem] table (Scene::fem), so a
+//      scene can override single calibrated values (experiments/scenes/README.md:
+//      "an absent value is computed, or taken from the parameter file").
 //
 // Parameter file format (TOML, written by calibration): top-level keys equal to
 // the [fem] key names above, each a number > 0, any subset, e.g.

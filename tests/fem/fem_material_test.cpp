@@ -106,3 +106,26 @@ TEST(FaceTension, ClipsStiffnessIgnoresCompressionAndCombines) {
 
 }  // namespace
 }  // namespace wl
+
+namespace wl {
+namespace {
+
+TEST(FemMaterial, PrecedenceDefaultsThenParameterFileThenSceneTable) {
+  Scene s = test::fem_scene(3, 3);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("wl_fem_prec_" + std::to_string(::getpid()) + ".toml")).string();
+  FemMaterial file;
+  file.warp_stretch_N_per_m = 77.0;
+  file.shear_N_per_m = 9.0;
+  write_fem_parameter_file(path, file);
+  s.fem.parameter_file = path;
+  s.fem.shear_N_per_m = 4.0;
+  const FemMaterial m = fem_material(s);
+  std::remove(path.c_str());
+  EXPECT_DOUBLE_EQ(m.warp_stretch_N_per_m, 77.0);  // from the file
+  EXPECT_DOUBLE_EQ(m.shear_N_per_m, 4.0);          // the scene's explicit value wins
+  EXPECT_DOUBLE_EQ(m.weft_stretch_N_per_m, default_fem_material(s).weft_stretch_N_per_m);  // default
+}
+
+}  // namespace
+}  // namespace wl

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "models/fem/fem_mesh.h"
+#include "models/fem/fem_model.h"
 #include "tests/fem/fem_test_scene.h"
 
 namespace wl {
@@ -144,6 +145,22 @@ TEST_F(VtuFile, BadFilesGiveClearErrors) {
   } catch (const FemMeshError& e) {
     EXPECT_NE(std::string(e.what()).find("mesh.vtu:0: cannot open"), std::string::npos);
   }
+}
+
+TEST_F(VtuFile, ModelFromMeshFileMapsPinsToNearestVertex) {
+  Scene s = test::fem_scene(11, 11);  // L = 1 mm: crossing (10, 10) at uv (0.01, 0.01)
+  s.fem.mesh_file = write(vtu());
+  s.pins = {{10, 10}, {1, 0}};  // (1, 0) is 1 mm from vertex 0
+  FemModel m(s);
+  EXPECT_EQ(m.mesh().num_vertices(), 4);
+  EXPECT_EQ(m.num_dofs(), 12);
+  EXPECT_EQ(m.vertex_of_node({10, 10}), 2);
+  EXPECT_EQ(m.vertex_of_node({1, 0}), 0);
+  EXPECT_EQ(m.fixed_dofs().size(), 6u);
+  EXPECT_LT(m.initial_q().segment<3>(6).norm(), 2.0);  // positions from the file (z = 1)
+  EXPECT_DOUBLE_EQ(m.initial_q()[8], 1.0);
+  s.pins = {{30, 30}};  // far outside the mesh
+  EXPECT_THROW(FemModel{s}, std::invalid_argument);
 }
 
 }  // namespace
