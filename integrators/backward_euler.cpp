@@ -67,8 +67,8 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
     g = m0 * (vv - v0) - h * ev_.force;
     zero_fixed(g, fixed_);
   };
+  // Initial guess v₁ = v₀, evaluated at the end-of-step position q₀ + h v₀.
   Vec g;
-  residual(v, g);  // ev_ holds f(q0, v0) = f(q0 + h v, v) only if v == v0... re-evaluate at the guess:
   model_->evaluate(t_ + h, q0 + h * v, v, kForce | kDfdq | kDfdv, ev_);
   ++stats_.rhs_evals;
   ++stats_.jac_evals;

@@ -14,6 +14,7 @@ void write_run_summary(const std::filesystem::path& path, const Scene& scene, co
                        const Model& model, const Integrator& integrator, const RunReport& report) {
   Json j = Json::object();
   Json s = Json::object();
+  s.set("name", std::filesystem::path(scene.source).stem().string());
   s.set("file", scene.source);
   std::ifstream in(scene.source);
   std::stringstream text;
@@ -24,7 +25,9 @@ void write_run_summary(const std::filesystem::path& path, const Scene& scene, co
   s.set("duration_s", scene.duration_s);
   s.set("output_interval_s", scene.output_interval_s);
   j.set("scene", s);
-  j.set("model", Json(model.describe()));
+  Json m(model.describe());
+  m.set("name", model.name());
+  j.set("model", m);
   Json in_ = Json::object();
   in_.set("name", integrator.name());
   in_.set("adaptive", scene.adaptive);
