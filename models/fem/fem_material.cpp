@@ -1,0 +1,147 @@
+#include "models/fem/fem_material.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <utility>
+
+#include <toml++/toml.h>
+
+namespace wl {
+namespace {
+
+struct Key {
+  const char* name;
+  double FemMaterial::*field;
+  const char* expected;
+};
+
+const Key kKeys[] = {
+    {"areal_density_kg_per_m2", &FemMaterial::areal_density_kg_per_m2, "a number > 0 (kg/m²)"},
+    {"warp_stretch_N_per_m", &FemMaterial::warp_stretch_N_per_m, "a number > 0 (N/m)"},
+    {"weft_stretch_N_per_m", &FemMaterial::weft_stretch_N_per_m, "a number > 0 (N/m)"},
+    {"shear_N_per_m", &FemMaterial::shear_N_per_m, "a number > 0 (N/m)"},
+    {"shear_lock_angle_rad", &FemMaterial::shear_lock_angle_rad, "a number > 0 (rad)"},
+    {"shear_lock_exponent", &FemMaterial::shear_lock_exponent, "a number > 0"},
+    {"warp_bending_N_m", &FemMaterial::warp_bending_N_m, "a number > 0 (N·m)"},
+    {"weft_bending_N_m", &FemMaterial::weft_bending_N_m, "a number > 0 (N·m)"},
+};
+
+[[noreturn]] void fail(const std::string& file, int line, const std::string& key, const std::string& value,
+                       const std::string& expected) {
+  throw FemParameterError(file + ":" + std::to_string(line) + ": key '" + key + "': got " + value + ", expected " +
+                          expected);
+}
+
+}  // namespace
+
+FemMaterial default_fem_material(const Scene& s) {
+  const double L = s.spacing_m, R = s.radius_m, area = std::numbers::pi * R * R;
+  double warp_ks = 0, warp_kb = 0, warp_rho = 0, weft_ks = 0, weft_kb = 0, weft_rho = 0;
+  for (int j = 0; j < s.warps; ++j) {
+    const YarnType& y = s.warp_type(j);
+    warp_ks += y.stretch_modulus_Pa * area / s.warps;
+    warp_kb += y.bending_modulus_Pa * area / s.warps;
+    warp_rho += y.density_kg_per_m / s.warps;
+  }
+  for (int i = 0; i < s.wefts; ++i) {
+    const YarnType& y = s.weft_type(i);
+    weft_ks += y.stretch_modulus_Pa * area / s.wefts;
+    weft_kb += y.bending_modulus_Pa * area / s.wefts;
+    weft_rho += y.density_kg_per_m / s.wefts;
+  }
+  FemMaterial m;
+  m.warp_stretch_N_per_m = warp_ks / L;
+  m.weft_stretch_N_per_m = weft_ks / L;
+  m.warp_bending_N_m = warp_kb / L;
+  m.weft_bending_N_m = weft_kb / L;
+  m.areal_density_kg_per_m2 = (warp_rho + weft_rho) / L;
+  m.shear_N_per_m = s.contact.shear_modulus_Pa * area / L;
+  if (R / L < std::numbers::sqrt2 / 2) {
+    m.shear_lock_angle_rad = std::numbers::pi / 2 - 2 * std::asin(R / L);
+    m.shear_lock_exponent = s.contact.lock_exponent;
+  }
+  return m;
+}
+
+FemMaterial parse_fem_parameters(const std::string& text, const std::string& source, FemMaterial m) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    fail(source, static_cast<int>(e.source().begin.line), "(syntax)", "'" + std::string(e.description()) + "'",
+         "valid TOML");
+  }
+  for (auto&& [k, node] : root) {
+    const std::string key(k.str());
+    const int line = static_cast<int>(node.source().begin.line);
+    if (key == "provenance") {
+      if (!node.is_table()) fail(source, line, key, "a non-table", "a table of free-form notes");
+      continue;
+    }
+    const Key* spec = nullptr;
+    for (const Key& c : kKeys)
+      if (key == c.name) spec = &c;
+    if (!spec) {
+      std::string known;
+      for (const Key& c : kKeys) known += std::string(known.empty() ? "" : ", ") + c.name;
+      fail(source, line, key, "an unknown key", "one of " + known + " or [provenance]");
+    }
+    const auto v = node.value<double>();
+    std::ostringstream written;
+    node.visit([&](auto&& n) { written << n; });
+    if (!v || !std::isfinite(*v) || *v <= 0) fail(source, line, key, written.str(), spec->expected);
+    if (key == "shear_lock_angle_rad" && *v >= std::numbers::pi / 2)
+      fail(source, line, key, written.str(), "a shear angle in (0, π/2) rad");
+    m.*(spec->field) = *v;
+  }
+  return m;
+}
+
+FemMaterial read_fem_parameter_file(const std::string& path, FemMaterial base) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, 0, "parameter_file", "'" + path + "'", "a readable FEM parameter file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_fem_parameters(ss.str(), path, base);
+}
+
+void write_fem_parameter_file(const std::string& path, const FemMaterial& m, const std::string& note) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "# weavelab FEM parameters (models/fem/fem_material.h)\n";
+  for (const Key& k : kKeys)
+    if (m.*(k.field) > 0) out << k.name << " = " << m.*(k.field) << "\n";
+  if (!note.empty()) out << "\n[provenance]\nnote = " << toml::value<std::string>(note) << "\n";
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+    f << out.str();
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+FemMaterial fem_material(const Scene& s) {
+  FemMaterial m = default_fem_material(s);
+  const FemSettings& f = s.fem;
+  if (!f.parameter_file.empty()) m = read_fem_parameter_file(f.parameter_file, m);
+  auto set = [](double& out, const std::optional<double>& v) {
+    if (v) out = *v;
+  };
+  set(m.areal_density_kg_per_m2, f.areal_density_kg_per_m2);
+  set(m.warp_stretch_N_per_m, f.warp_stretch_N_per_m);
+  set(m.weft_stretch_N_per_m, f.weft_stretch_N_per_m);
+  set(m.shear_N_per_m, f.shear_N_per_m);
+  set(m.shear_lock_angle_rad, f.shear_lock_angle_rad);
+  set(m.shear_lock_exponent, f.shear_lock_exponent);
+  set(m.warp_bending_N_m, f.warp_bending_N_m);
+  set(m.weft_bending_N_m, f.weft_bending_N_m);
+  return m;
+}
+
+}  // namespace wl

@@ -1,0 +1,61 @@
+// Material parameters of the continuum model (issue 3 §4). Sources, later
+// overriding earlier:
+//   1. defaults derived from the yarn parameters (a first guess only, to be
+//      replaced by calibration):
+//        warp_stretch_N_per_m = k_s/L  (k_s = Y·πR², mean over the warp yarns)
+//        weft_stretch_N_per_m = k_s/L  (mean over the weft yarns)
+//        shear_N_per_m        = S·πR²/L (contact.shear_modulus_Pa; small-angle
+//                               match of the yarn V = ½k_sh L(φ−π/2)² per crossing)
+//        shear_lock_angle_rad = π/2 − 2·arcsin(R/L)  (the shear angle where the
+//                               yarn model locks, physics.md §3.3 φ_l; no locking
+//                               when R/L ≥ 1/√2)
+//        shear_lock_exponent  = contact.lock_exponent (c)
+//        warp_bending_N_m     = k_b/L  (k_b = B·πR², mean over warps), weft likewise
+//        areal_density_kg_per_m2 = (ρ_warp + ρ_weft)/L  (means over yarns), so that
+//                               both models carry the same mass per area (up to
+//                               the yarn ends at the border);
+//   2. the parameter file scene.fem.parameter_file, if given (calibrated values);
+//   3. values given explicitly in the scene's [fem] table (Scene::fem), so a
+//      scene can override single calibrated values (experiments/scenes/README.md:
+//      "an absent value is computed, or taken from the parameter file").
+//
+// Parameter file format (TOML, written by calibration): top-level keys equal to
+// the [fem] key names above, each a number > 0, any subset, e.g.
+//   warp_stretch_N_per_m = 612.5
+//   shear_N_per_m = 0.8
+// plus an optional free-form table [provenance] (ignored). Any other key, or a
+// value that is not a number > 0, is an error "<file>:<line>: key '<key>': got
+// <value>, expected <what>".
+#pragma once
+#include <stdexcept>
+#include <string>
+
+#include "models/scene/scene.h"
+
+namespace wl {
+
+struct FemMaterial {
+  double areal_density_kg_per_m2 = 0.0;
+  double warp_stretch_N_per_m = 0.0, weft_stretch_N_per_m = 0.0;
+  double shear_N_per_m = 0.0;
+  double shear_lock_angle_rad = 0.0;  // 0: no locking
+  double shear_lock_exponent = 0.0;   // ≤ 0: no locking
+  double warp_bending_N_m = 0.0, weft_bending_N_m = 0.0;
+};
+
+class FemParameterError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Step 1 alone.
+FemMaterial default_fem_material(const Scene& scene);
+// Overrides `base` with the values present in a parameter file; throws FemParameterError.
+FemMaterial read_fem_parameter_file(const std::string& path, FemMaterial base);
+FemMaterial parse_fem_parameters(const std::string& toml_text, const std::string& source_name, FemMaterial base);
+// Writes all values in the parameter-file format (atomic: temporary name, then rename).
+void write_fem_parameter_file(const std::string& path, const FemMaterial& m, const std::string& provenance_note = "");
+// Steps 1–3.
+FemMaterial fem_material(const Scene& scene);
+
+}  // namespace wl

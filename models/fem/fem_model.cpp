@@ -1,0 +1,226 @@
+#include "models/fem/fem_model.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "models/common/wind.h"
+#include "models/fem/deformation_gradient.h"
+#include "models/fem/terms/hinge_bending.h"
+#include "models/fem/terms/in_plane_shear.h"
+#include "models/fem/terms/lumped_mass.h"
+#include "models/fem/terms/nodal_gravity.h"
+#include "models/fem/terms/warp_weft_stretch.h"
+#include "models/yarn/terms/handle_spring.h"
+
+namespace wl {
+namespace {
+
+std::array<int, 9> triangle_stencil(const std::array<int, 3>& t) {
+  std::array<int, 9> s;
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) s[3 * k + c] = 3 * t[k] + c;
+  return s;
+}
+
+std::string format(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+}  // namespace
+
+FemModel::FemModel(const Scene& scene) : FemModel(scene, make_fem_mesh(scene), fem_material(scene)) {}
+
+FemModel::FemModel(const Scene& scene, FemMesh mesh, const FemMaterial& material)
+    : scene_(scene), mesh_(std::move(mesh)), material_(material) {
+  build();
+}
+
+void FemModel::build() {
+  const int nv = mesh_.num_vertices(), nt = mesh_.num_triangles();
+  num_dofs_ = 3 * nv;
+  q0_.resize(num_dofs_);
+  v0_ = Vec::Zero(num_dofs_);
+  for (int i = 0; i < nv; ++i) q0_.segment<3>(3 * i) = mesh_.x[i];
+  constants_ = Vec();
+
+  std::vector<TriangleRest> rest(nt);
+  for (int t = 0; t < nt; ++t) {
+    const auto& tri = mesh_.triangles[t];
+    rest[t] = triangle_rest(mesh_.uv[tri[0]], mesh_.uv[tri[1]], mesh_.uv[tri[2]]);
+    for (int k = 0; k < 3; ++k)
+      max_uv_edge_ = std::max(max_uv_edge_, (mesh_.uv[tri[(k + 1) % 3]] - mesh_.uv[tri[k]]).norm());
+  }
+  hinges_ = interior_hinges(mesh_);
+
+  // Mass: always present (no other inertia in the FEM), lumped ρ_A·A/3 per vertex.
+  vertex_mass_.assign(nv, 0.0);
+  {
+    auto t = std::make_unique<LumpedMassTerm>();
+    for (int e = 0; e < nt; ++e) {
+      const double m = material_.areal_density_kg_per_m2 * rest[e].area;
+      t->add(triangle_stencil(mesh_.triangles[e]), m);
+      for (int v : mesh_.triangles[e]) vertex_mass_[v] += m / 3.0;
+    }
+    terms_.push_back(std::move(t));
+  }
+  const TermSwitches& on = scene_.terms;
+  if (on.stretch) {
+    auto t = std::make_unique<WarpWeftStretchTerm>(material_.warp_stretch_N_per_m, material_.weft_stretch_N_per_m);
+    for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
+    terms_.push_back(std::move(t));
+  }
+  if (on.shear) {
+    auto t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
+                                                material_.shear_lock_exponent);
+    for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
+    terms_.push_back(std::move(t));
+  }
+  if (on.bending && !hinges_.empty()) {
+    auto t = std::make_unique<HingeBendingTerm>(material_.warp_bending_N_m, material_.weft_bending_N_m);
+    for (const Hinge& h : hinges_) {
+      std::array<int, 12> s;
+      for (int k = 0; k < 4; ++k)
+        for (int c = 0; c < 3; ++c) s[3 * k + c] = 3 * h.v[k] + c;
+      t->add(s, mesh_.uv[h.v[1]] - mesh_.uv[h.v[0]], rest[h.tri0].area + rest[h.tri1].area);
+    }
+    terms_.push_back(std::move(t));
+  }
+  const Vec3 g(scene_.gravity_m_per_s2[0], scene_.gravity_m_per_s2[1], scene_.gravity_m_per_s2[2]);
+  if (on.gravity && g.norm() > 0) {
+    auto t = std::make_unique<NodalGravityTerm>(g);
+    for (int i = 0; i < nv; ++i) t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
+    terms_.push_back(std::move(t));
+  }
+  // Wind: the yarn model's term and parameters, on every triangle (physics.md §3.9).
+  const Vec3 wind(scene_.wind_velocity_m_per_s[0], scene_.wind_velocity_m_per_s[1], scene_.wind_velocity_m_per_s[2]);
+  if (on.wind && (scene_.air_density_kg_per_m3 > 0 || scene_.wind_drag_Ns_per_m3 > 0)) {
+    auto t = std::make_unique<WindTerm>(wind, scene_.air_density_kg_per_m3, scene_.wind_drag_Ns_per_m3);
+    for (const auto& tri : mesh_.triangles) t->add(triangle_stencil(tri));
+    terms_.push_back(std::move(t));
+  }
+  if (on.handles && !scene_.handles.empty()) {
+    auto t = std::make_unique<HandleSpringTerm>();
+    for (const Handle& h : scene_.handles) {
+      const int v = vertex_of_node(h.node);
+      t->add({3 * v, 3 * v + 1, 3 * v + 2}, q0_.segment<3>(3 * v), h.stiffness_N_per_m);
+    }
+    terms_.push_back(std::move(t));
+  }
+  for (const NodeRef& p : scene_.pins) {
+    const int v = vertex_of_node(p);
+    for (int c = 0; c < 3; ++c) fixed_.push_back(3 * v + c);
+  }
+
+  rest_lu_.resize(nt);
+  rest_lv_.resize(nt);
+  for (int e = 0; e < nt; ++e) {
+    const auto s = triangle_stencil(mesh_.triangles[e]);
+    double q[9];
+    for (int k = 0; k < 9; ++k) q[k] = q0_[s[k]];
+    rest_lu_[e] = warp_vector(rest[e], q).norm();
+    rest_lv_[e] = weft_vector(rest[e], q).norm();
+  }
+  finalize();
+}
+
+int FemModel::vertex_of_node(const NodeRef& node) const {
+  const Vec2 uv(node.i * scene_.spacing_m, node.j * scene_.spacing_m);
+  const int v = nearest_vertex(mesh_, uv);
+  const double d = (mesh_.uv[v] - uv).norm();
+  if (mesh_.is_grid() ? d > 1e-9 * scene_.spacing_m : d > max_uv_edge_) {
+    std::ostringstream s;
+    s << mesh_.source << ": crossing (" << node.i << ", " << node.j << ") at material (" << uv.x() << ", " << uv.y()
+      << ") m has no vertex: nearest is vertex " << v << " at distance " << d << " m"
+      << (mesh_.is_grid() ? " (pins and handles must lie on the fem.stride lattice)" : " (outside the mesh)");
+    throw std::invalid_argument(s.str());
+  }
+  return v;
+}
+
+bool FemModel::surface_point(const Vec& q, const Vec2& uv, Vec3* x) const {
+  for (const auto& tri : mesh_.triangles) {
+    const Vec2 a = mesh_.uv[tri[0]], e1 = mesh_.uv[tri[1]] - a, e2 = mesh_.uv[tri[2]] - a, p = uv - a;
+    const double det = e1.x() * e2.y() - e1.y() * e2.x();
+    const double b1 = (p.x() * e2.y() - p.y() * e2.x()) / det, b2 = (e1.x() * p.y() - e1.y() * p.x()) / det;
+    const double tol = 1e-12;
+    if (b1 >= -tol && b2 >= -tol && b1 + b2 <= 1 + tol) {
+      *x = (1 - b1 - b2) * position(q, tri[0]) + b1 * position(q, tri[1]) + b2 * position(q, tri[2]);
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<FaceTension> FemModel::tension_map(const Vec& q) const {
+  std::vector<FaceTension> out(mesh_.num_triangles());
+  for (int e = 0; e < mesh_.num_triangles(); ++e) {
+    const auto& tri = mesh_.triangles[e];
+    const TriangleRest r = triangle_rest(mesh_.uv[tri[0]], mesh_.uv[tri[1]], mesh_.uv[tri[2]]);
+    double x[9];
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) x[3 * k + c] = q[3 * tri[k] + c];
+    out[e] = face_tension(warp_vector(r, x), weft_vector(r, x), rest_lu_[e], rest_lv_[e],
+                          material_.warp_stretch_N_per_m, material_.weft_stretch_N_per_m);
+  }
+  return out;
+}
+
+Frame FemModel::frame(double t, const Vec& q, const Vec& v) {
+  const int nv = mesh_.num_vertices(), nt = mesh_.num_triangles();
+  Frame f;
+  f.time = t;
+  f.points.resize(nv, 3);
+  DataArray vel{"velocity", 3, {}}, uv{"uv", 2, {}};
+  for (int i = 0; i < nv; ++i) {
+    f.points.row(i) = q.segment<3>(3 * i).transpose();
+    for (int c = 0; c < 3; ++c) vel.values.push_back(v[3 * i + c]);
+    uv.values.push_back(mesh_.uv[i].x());
+    uv.values.push_back(mesh_.uv[i].y());
+  }
+  CellBlock tris{CellType::triangle, {}};
+  for (const auto& tri : mesh_.triangles) tris.connectivity.insert(tris.connectivity.end(), tri.begin(), tri.end());
+  f.cells.push_back(std::move(tris));
+  DataArray tension{"tension", 1, {}}, lu{"lu", 1, {}}, lv{"lv", 1, {}};
+  for (const FaceTension& ft : tension_map(q)) {
+    tension.values.push_back(ft.tension);
+    lu.values.push_back(ft.lu);
+    lv.values.push_back(ft.lv);
+  }
+  f.point_data = {std::move(vel), std::move(uv)};
+  f.cell_data = {std::move(tension), std::move(lu), std::move(lv)};
+  (void)nt;
+  return f;
+}
+
+std::map<std::string, std::string> FemModel::describe() const {
+  std::map<std::string, std::string> m;
+  m["model"] = "fem";
+  m["mesh"] = mesh_.is_grid() ? "grid " + std::to_string(mesh_.grid_i.size()) + " x " +
+                                    std::to_string(mesh_.grid_j.size()) + " vertices (stride " +
+                                    std::to_string(scene_.fem.stride) + ")"
+                              : mesh_.source;
+  m["vertices"] = std::to_string(mesh_.num_vertices());
+  m["triangles"] = std::to_string(mesh_.num_triangles());
+  m["hinges"] = std::to_string(hinges_.size());
+  m["dofs"] = std::to_string(num_dofs_);
+  m["fixed_dofs"] = std::to_string(fixed_.size());
+  std::ostringstream terms;
+  for (const auto& t : terms_) terms << (terms.tellp() > 0 ? ", " : "") << t->name() << " (" << t->num_elements() << ")";
+  m["terms"] = terms.str();
+  m["matrix_nonzeros"] = std::to_string(pattern().nonZeros());
+  const FemMaterial& p = material_;
+  m["fem_parameters"] = "areal_density_kg_per_m2=" + format(p.areal_density_kg_per_m2) +
+                        " warp_stretch_N_per_m=" + format(p.warp_stretch_N_per_m) +
+                        " weft_stretch_N_per_m=" + format(p.weft_stretch_N_per_m) +
+                        " shear_N_per_m=" + format(p.shear_N_per_m) +
+                        " shear_lock_angle_rad=" + format(p.shear_lock_angle_rad) +
+                        " shear_lock_exponent=" + format(p.shear_lock_exponent) +
+                        " warp_bending_N_m=" + format(p.warp_bending_N_m) +
+                        " weft_bending_N_m=" + format(p.weft_bending_N_m);
+  return m;
+}
+
+}  // namespace wl

@@ -1,0 +1,62 @@
+// The continuum triangle-FEM model (issue 3, physics.md §6): the cloth of a
+// Scene as a triangle mesh (fem_mesh.h) with 3 DoFs per vertex (x at 3·vertex),
+// material from fem_material.h, and one term per idea (models/fem/terms/):
+//   stretch  → WarpWeftStretchTerm       bending → HingeBendingTerm (interior edges)
+//   shear    → InPlaneShearTerm (lock)   gravity → NodalGravityTerm
+//   wind     → WindTerm (models/common, as the yarn model, per triangle)
+//   handles  → HandleSpringTerm (models/yarn/terms) at the handle's vertex
+// The lumped mass (LumpedMassTerm) is always present: the FEM has no other
+// inertia, so terms.inertia does not apply; mass is constant.
+// Pins and handles (crossing (i, j)) map to the vertex at material (iL, jL).
+// Scenes validate that, with stride > 1, they lie on the stride lattice, so a
+// grid mesh always has that vertex; a mesh file uses the nearest vertex in UV
+// and rejects a point farther than the mesh's longest UV edge (outside the mesh).
+#pragma once
+#include <map>
+
+#include "models/core/term_model.h"
+#include "models/fem/fem_material.h"
+#include "models/fem/fem_mesh.h"
+#include "models/fem/tension_map.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+class FemModel : public TermModel {
+ public:
+  explicit FemModel(const Scene& scene);
+  // With an explicit mesh and material (calibration, tests).
+  FemModel(const Scene& scene, FemMesh mesh, const FemMaterial& material);
+
+  std::string name() const override { return "fem"; }
+  bool mass_depends_on_q() const override { return false; }
+  Frame frame(double t, const Vec& q, const Vec& v) override;
+  std::map<std::string, std::string> describe() const override;
+
+  const FemMesh& mesh() const { return mesh_; }
+  const FemMaterial& material() const { return material_; }
+  const std::vector<Hinge>& hinges() const { return hinges_; }
+  // Lumped mass of each vertex [kg] (sum of ρ_A·A/3 over its triangles).
+  const std::vector<double>& vertex_mass() const { return vertex_mass_; }
+  Vec3 position(const Vec& q, int vertex) const { return q.segment<3>(3 * vertex); }
+  // Vertex carrying crossing (i, j) (material (iL, jL)); see above.
+  int vertex_of_node(const NodeRef& node) const;
+  // The deformed surface at material point uv (linear interpolation in the
+  // triangle that contains it); false when uv lies outside the mesh.
+  bool surface_point(const Vec& q, const Vec2& uv, Vec3* x) const;
+  // Optitex tension map per triangle (tension_map.h) at state q.
+  std::vector<FaceTension> tension_map(const Vec& q) const;
+
+ private:
+  void build();
+
+  Scene scene_;
+  FemMesh mesh_;
+  FemMaterial material_;
+  std::vector<Hinge> hinges_;
+  std::vector<double> vertex_mass_;
+  std::vector<double> rest_lu_, rest_lv_;  // per triangle, from the initial positions
+  double max_uv_edge_ = 0.0;
+};
+
+}  // namespace wl

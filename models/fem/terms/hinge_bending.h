@@ -1,0 +1,54 @@
+// Bending across an interior edge of the triangle mesh (dihedral-angle hinge,
+// discrete shells, Grinspun et al. 2003) [not in seeds]:
+//   V = ½ k_e · ‖ē‖²/(Ā₁+Ā₂) · (θ − θ₀)²,
+// ē the rest (UV) edge, Ā₁, Ā₂ the rest areas of the two triangles, θ the
+// signed dihedral angle (0 when flat, robust there: atan2 form, no 1/sin θ),
+// θ₀ = 0 (the cloth is flat at rest: the material rest state is the UV layout).
+// Stiffness per edge, from its direction d = (d_u, d_v) in UV space:
+//   k_e = k_warp·d_v² + k_weft·d_u²,
+// so an edge along v (crossed by the warp yarns) bends with the warp stiffness,
+// an edge along u with the weft stiffness, and a 45° diagonal with the mean.
+// k in N·m (bending stiffness per unit width). Normalisation: on the grid mesh
+// (right triangles, diagonal (i,j)-(i+1,j+1)), a cylinder of curvature κ about
+// the v axis bends only the edges along v, each by θ = κL, so V per area is
+// exactly ½k_warp κ² (likewise about u with k_weft); diagonals see only twist.
+// On other meshes the effective stiffness differs by a mesh-dependent factor
+// (½ for an equilateral mesh), which calibration absorbs.
+//
+// Stencil: (x0, x1) the edge, x2 the opposite vertex of the triangle that
+// holds the edge as x0→x1 in its CCW order, x3 that of the other triangle.
+// Gradient (Bridson et al. 2003): ∇_{x2}θ = −‖e‖N₁/‖N₁‖², ∇_{x3}θ = −‖e‖N₂/‖N₂‖²,
+// ∇_{x0}θ = −(1−t₂)∇_{x2}θ − (1−t₃)∇_{x3}θ, ∇_{x1}θ = −t₂∇_{x2}θ − t₃∇_{x3}θ with
+// N₁ = e×(x2−x0), N₂ = (x3−x0)×e, e = x1−x0, t_k = (x_k−x0)·e/‖e‖². The Hessian
+// is the exact derivative of these expressions (product rule, carried as 3×12
+// Jacobians of every intermediate vector).
+#pragma once
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "models/core/term.h"
+
+namespace wl {
+
+class HingeBendingTerm : public StencilTerm<12> {
+ public:
+  HingeBendingTerm(double k_warp_N_m, double k_weft_N_m) : k_warp_(k_warp_N_m), k_weft_(k_weft_N_m) {}
+  std::string name() const override { return "fem-bending"; }
+  // edge_uv = rest UV of x1 − rest UV of x0; area_sum = Ā₁ + Ā₂ (rest).
+  void add(const std::array<int, 12>& stencil, const Vec2& edge_uv, double area_sum, double theta0 = 0.0);
+  double energy(int e, const double* q) const override;
+  void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+
+  // k_e for an edge of UV direction edge_uv (see above).
+  double edge_stiffness(const Vec2& edge_uv) const;
+  // Signed dihedral angle of the hinge at local positions q (12 doubles).
+  static double dihedral_angle(const double* q);
+
+ private:
+  double k_warp_, k_weft_;
+  std::vector<double> coeff_;  // k_e ‖ē‖²/(Ā₁+Ā₂)
+  std::vector<double> theta0_;
+};
+
+}  // namespace wl
