@@ -13,6 +13,7 @@ class NodalGravityTerm : public StencilTerm<3> {
  public:
   explicit NodalGravityTerm(const Vec3& g_m_per_s2) : g_(g_m_per_s2) {}
   std::string name() const override { return "fem-gravity"; }
+  bool imex_explicit() const override { return true; }  // non-stiff external load
   void add(const std::array<int, 3>& stencil, double mass_kg);
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
