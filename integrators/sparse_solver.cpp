@@ -44,12 +44,14 @@ SparseSolver::SparseSolver(const SparseMatrix& pattern, std::span<const int> fix
     for (int p = pattern.outerIndexPtr()[col]; p < pattern.outerIndexPtr()[col + 1]; ++p)
       if (reduced_index[pattern.innerIndexPtr()[p]] >= 0) value_map_[k++] = p;
   }
-  // The step matrix is structurally symmetric (full stencil blocks), so UMFPACK's
-  // symmetric strategy (AMD on A + Aᵀ, diagonal pivots preferred) applies; its
-  // automatic choice would look at the zero values of the pattern and pick the
-  // much slower unsymmetric strategy. The analysis itself waits for the first
-  // numeric values (factorize), then is reused.
-  // impl_->lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+  // The step matrix is structurally symmetric (full stencil blocks): UMFPACK's
+  // symmetric strategy with a METIS nested-dissection ordering of A + Aᵀ gives
+  // the least fill on these grids (measured on the 17×17 and 65×65 hanging
+  // cloth: 9.1M LU entries at 65×65 against 12.2M for the unsymmetric COLAMD
+  // strategy and far more for AMD). The analysis waits for the first numeric
+  // values (factorize) and is then reused.
+  impl_->lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+  impl_->lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
   rb_.resize(m);
   rx_.resize(m);
 }
