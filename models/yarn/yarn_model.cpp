@@ -165,17 +165,14 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
         }
     };
     const double mu = c.friction_coefficient, kf = c.friction_stiffness_N_per_m, df = c.friction_damping_Ns_per_m;
-    if (c.friction_model == ContactParams::FrictionModel::gong) {
-      auto t = std::make_unique<GongFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
-      add_all(t);
-      gong_friction_ = t.get();
-      terms_.push_back(std::move(t));
-    } else {
-      auto t = std::make_unique<CirioFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
-      add_all(t);
-      cirio_friction_ = t.get();
-      terms_.push_back(std::move(t));
-    }
+    std::unique_ptr<FrictionTerm> t;
+    if (c.friction_model == ContactParams::FrictionModel::gong)
+      t = std::make_unique<GongFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
+    else
+      t = std::make_unique<CirioFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
+    add_all(t);
+    friction_ = t.get();
+    terms_.push_back(std::move(t));
   }
 
   const Vec3 wind(scene.wind_velocity_m_per_s[0], scene.wind_velocity_m_per_s[1], scene.wind_velocity_m_per_s[2]);
@@ -252,8 +249,7 @@ Frame YarnModel::frame(double t, const Vec& q, const Vec& v) {
   }
   slide.values.assign(2 * n, 0.0);
   std::vector<double> state;
-  if (gong_friction_) state = gong_friction_->sliding_state();
-  if (cirio_friction_) state = cirio_friction_->sliding_state();
+  if (friction_) state = friction_->sliding_state();
   for (size_t e = 0; e < state.size(); ++e) slide.values[2 * friction_node_[e] + friction_axis_[e]] = state[e];
 
   CellBlock lines{CellType::line, {}}, quads{CellType::quad, {}};

@@ -11,9 +11,7 @@
 
 namespace wl {
 
-class StretchTerm;
-class GongFrictionTerm;
-class CirioFrictionTerm;
+class FrictionTerm;
 
 class YarnModel : public TermModel {
  public:
@@ -44,8 +42,7 @@ class YarnModel : public TermModel {
   WovenGrid grid_;
   std::vector<Segment> segments_;
   std::unique_ptr<ContactNormals> normals_;  // only when a term needs F_n
-  const GongFrictionTerm* gong_friction_ = nullptr;
-  const CirioFrictionTerm* cirio_friction_ = nullptr;
+  const FrictionTerm* friction_ = nullptr;
   std::vector<int> friction_node_, friction_axis_;  // per friction element: node id, 0 = u / 1 = v
 };
 

@@ -23,38 +23,25 @@
 #pragma once
 #include <vector>
 
-#include "models/core/term.h"
+#include "models/yarn/terms/friction.h"
 
 namespace wl {
 
-class CirioFrictionTerm : public StencilTerm<1> {
+class CirioFrictionTerm : public FrictionTerm {
  public:
   // Same parameters as GongFrictionTerm; p (tanh sharpness) is validated but
   // unused: the stick/slip switch here is discrete, between steps.
-  CirioFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df, double p);
+  CirioFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df, double p)
+      : FrictionTerm("CirioFrictionTerm", normal_force, mu, kf, df, p, true) {}
 
-  void add(int dof, int node, double anchor0);
-
-  std::string name() const override { return "friction"; }
-  bool conservative() const override { return false; }
-  bool has_velocity_jacobian() const override { return true; }
-  int stage() const override { return 1; }
-  void prepare(const EvalContext& ctx) override;
   void accept_step(const EvalContext& ctx, double h) override;
-  double energy(int, const double*) const override { return 0.0; }
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
-
-  // Per element: 0 = stick, 1 = slip (the mode held for the current step).
-  std::vector<double> sliding_state() const;
-  double anchor(int e) const { return anchor_[e]; }
-  int slip_direction(int e) const { return mode_[e]; }  // 0 stick, ±1 slip along ±u
-  double contact_force(int e) const { return Fn_[e]; }  // frozen F_n
+  // 0 = stick, 1 = slip (the mode held for the current step).
+  std::vector<double> sliding_state() const override;
+  int slip_direction(int e) const { return e < static_cast<int>(mode_.size()) ? mode_[e] : 0; }  // 0, ±1
 
  private:
-  const std::vector<double>* normal_force_;
-  double mu_, kf_, df_;
-  std::vector<int> node_, mode_;
-  std::vector<double> anchor_, Fn_;
+  std::vector<int> mode_;  // per element, sized at the first accept_step
 };
 
 }  // namespace wl

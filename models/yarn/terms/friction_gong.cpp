@@ -27,38 +27,6 @@ GongFrictionResponse gong_friction_law(double delta_u, double F_u, double F_n, d
   return r;
 }
 
-GongFrictionTerm::GongFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df,
-                                   double p)
-    : normal_force_(normal_force), mu_(mu), kf_(kf), df_(df), p_(p) {
-  std::ostringstream bad;
-  if (!(mu >= 0.0)) bad << "mu = " << mu << " (expected >= 0)";
-  else if (!(kf >= 0.0)) bad << "kf = " << kf << " (expected >= 0)";
-  else if (!(df >= 0.0)) bad << "df = " << df << " (expected >= 0)";
-  else if (!(p > 0.0)) bad << "p = " << p << " (expected > 0)";
-  if (!bad.str().empty()) throw std::invalid_argument("GongFrictionTerm: " + bad.str());
-}
-
-void GongFrictionTerm::add(int dof, int node, double anchor0) {
-  if (normal_force_ && (node < 0 || node >= static_cast<int>(normal_force_->size()))) {
-    std::ostringstream msg;
-    msg << "GongFrictionTerm: node " << node << " outside the normal-force table of size " << normal_force_->size();
-    throw std::invalid_argument(msg.str());
-  }
-  stencils_.push_back({dof});
-  node_.push_back(node);
-  anchor_.push_back(anchor0);
-  Fu_.push_back(0.0);
-  Fn_.push_back(0.0);
-}
-
-void GongFrictionTerm::prepare(const EvalContext& ctx) {
-  for (int e = 0; e < num_elements(); ++e) {
-    const int dof = stencils_[e][0];
-    Fu_[e] = ctx.force_so_far && is_dof(dof) ? (*ctx.force_so_far)[dof] : 0.0;
-    Fn_[e] = normal_force_ ? (*normal_force_)[node_[e]] : 0.0;
-  }
-}
-
 double GongFrictionTerm::slide_indicator(double Fu, double Fn) const {
   return 1.0 / (1.0 + std::exp(-kSlideSharpness * (std::abs(Fu) - mu_ * Fn)));
 }
@@ -71,7 +39,7 @@ void GongFrictionTerm::accept_step(const EvalContext& ctx, double h) {
     const int dof = stencils_[e][0];
     if (!is_dof(dof) || !ctx.v) continue;
     const double Fu = ctx.force_so_far ? (*ctx.force_so_far)[dof] : Fu_[e];
-    const double Fn = normal_force_ ? (*normal_force_)[node_[e]] : 0.0;
+    const double Fn = normal_force_at(e);
     anchor_[e] += slide_indicator(Fu, Fn) * (*ctx.v)[dof] * h;
   }
 }

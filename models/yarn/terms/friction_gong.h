@@ -16,7 +16,7 @@
 #pragma once
 #include <vector>
 
-#include "models/core/term.h"
+#include "models/yarn/terms/friction.h"
 
 namespace wl {
 
@@ -30,41 +30,20 @@ struct GongFrictionResponse {
 };
 GongFrictionResponse gong_friction_law(double delta_u, double F_u, double F_n, double mu, double kf, double p);
 
-class GongFrictionTerm : public StencilTerm<1> {
+class GongFrictionTerm : public FrictionTerm {
  public:
   static constexpr double kSlideSharpness = 1e4;  // 1/N, slide indicator (Appendix A)
 
-  // normal_force: per-node F_n (N), owned by the model (null: F_n = 0). mu
-  // friction coefficient, kf spring (N/m), df damping (N·s/m), p tanh
-  // sharpness (1/m and 1/N; the seeds give none, the authors' code uses 10).
-  GongFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df, double p);
+  GongFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df, double p)
+      : FrictionTerm("GongFrictionTerm", normal_force, mu, kf, df, p, false) {}
 
-  // dof: the sliding coordinate (u or v) of the crossing; node: its index into
-  // *normal_force; anchor0: the rest value of the coordinate.
-  void add(int dof, int node, double anchor0);
-
-  std::string name() const override { return "friction"; }
-  bool conservative() const override { return false; }
-  bool has_velocity_jacobian() const override { return true; }
-  int stage() const override { return 1; }
-  void prepare(const EvalContext& ctx) override;
   void accept_step(const EvalContext& ctx, double h) override;
-  double energy(int, const double*) const override { return 0.0; }
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
-
-  // Per element: sigmoid(10⁴(|F_u| − μF_n)) at the last prepared inputs, 0 = stick … 1 = slide.
-  std::vector<double> sliding_state() const;
-  double anchor(int e) const { return anchor_[e]; }
-  double tangential_force(int e) const { return Fu_[e]; }  // frozen F_u
-  double contact_force(int e) const { return Fn_[e]; }     // frozen F_n
+  // sigmoid(10⁴(|F_u| − μF_n)) at the last prepared inputs.
+  std::vector<double> sliding_state() const override;
 
  private:
   double slide_indicator(double Fu, double Fn) const;
-
-  const std::vector<double>* normal_force_;
-  double mu_, kf_, df_, p_;
-  std::vector<int> node_;
-  std::vector<double> anchor_, Fu_, Fn_;
 };
 
 }  // namespace wl

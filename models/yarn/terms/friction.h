@@ -1,0 +1,47 @@
+// What both sliding-friction laws share (physics.md §3.7): one element per
+// sliding DoF of a crossing (local stencil (u0)), evaluated in stage 1 with the
+// crossing's contact normal force F_n and the stage-0 force on the DoF, F_u
+// ("all other forces", I-50), read in prepare() and held FROZEN for the
+// element; an anchor ū per element; damping −d_f u̇.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "models/core/term.h"
+
+namespace wl {
+
+class FrictionTerm : public StencilTerm<1> {
+ public:
+  // dof: the sliding coordinate (u or v) of the crossing; node: its index into
+  // the normal-force table; anchor0: the rest value of the coordinate.
+  void add(int dof, int node, double anchor0);
+
+  std::string name() const override { return "friction"; }
+  bool conservative() const override { return false; }
+  bool has_velocity_jacobian() const override { return true; }
+  int stage() const override { return 1; }
+  double energy(int, const double*) const override { return 0.0; }
+  void prepare(const EvalContext& ctx) override;
+
+  // Per element, 0 = stick … 1 = slide (for output).
+  virtual std::vector<double> sliding_state() const = 0;
+  double anchor(int e) const { return anchor_[e]; }
+  double tangential_force(int e) const { return Fu_[e]; }  // frozen F_u
+  double contact_force(int e) const { return Fn_[e]; }     // frozen F_n
+
+ protected:
+  // normal_force: per-node F_n [N] owned by the model (null: F_n = 0); mu
+  // friction coefficient; kf spring [N/m] (> 0 when `kf_positive`); df damping
+  // [N·s/m]; p tanh sharpness (the seeds give none, the authors' code uses 10).
+  FrictionTerm(const char* who, const std::vector<double>* normal_force, double mu, double kf, double df, double p,
+               bool kf_positive);
+  double normal_force_at(int e) const { return normal_force_ ? (*normal_force_)[node_[e]] : 0.0; }
+
+  const std::vector<double>* normal_force_;
+  double mu_, kf_, df_, p_;
+  std::vector<int> node_;
+  std::vector<double> anchor_, Fu_, Fn_;
+};
+
+}  // namespace wl
