@@ -12,8 +12,10 @@ B's surface at the same material point: B carries rest material coordinates
 and B's positions are interpolated barycentrically.
 
 CSV columns: time_s, rms_distance_m, max_distance_m, step_time_ratio_B_over_A
-(median "step_wall_s" of B over that of A, one value for the whole run).
---plot writes the RMS and max distance over time as PNG and SVG.
+(median "step_wall_s" of B over that of A, without the initial-state row;
+one value for the whole run).
+--plot writes the RMS and max distance over time as PNG and SVG; --table
+prints the per-frame distances (mm) on stdout.
 Missing or malformed inputs: a message on stderr and exit status 2.
 """
 import argparse
@@ -206,9 +208,9 @@ def frame_distance(mesh_a, mesh_b, label_a="A", label_b="B"):
 
 
 def median_step_time(metrics, label):
-    column = wio.metric(metrics, "step_wall_s", label)
+    column = wio.step_wall_times(metrics, label)
     if len(column) == 0:
-        raise wio.RunError(f"{label}: metrics.csv has no rows")
+        raise wio.RunError(f"{label}: metrics.csv has no step rows")
     return float(np.median(column))
 
 
@@ -238,24 +240,51 @@ def write_csv(path, rows):
     wio.write_text_atomically(path, "\n".join(lines) + "\n")
 
 
-def plot(path, rows, label_a, label_b):
+def material_size(run):
+    """Largest extent [m] of the material coordinates of run's first frame (for
+    a relative distance axis); None when it cannot be read."""
+    try:
+        frames = wio.read_pvd(wio.find_pvd(run))
+        uv = wio.material_coordinates(wio.read_mesh(frames[0][1]), run) if frames else None
+    except wio.RunError:
+        return None
+    if uv is None or len(uv) == 0:
+        return None
+    size = float((uv.max(axis=0) - uv.min(axis=0)).max())
+    return size if size > 0 else None
+
+
+def plot(path, rows, label_a, label_b, size_m=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     t = np.array([r[0] for r in rows])
-    fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(t, 1e3 * np.array([r[1] for r in rows]), "o-", label="RMS distance")
-    ax.plot(t, 1e3 * np.array([r[2] for r in rows]), "s--", label="max distance")
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.plot(t, 1e3 * np.array([r[1] for r in rows]), "o-", ms=4, label="RMS over A's points")
+    ax.plot(t, 1e3 * np.array([r[2] for r in rows]), "s--", ms=4, label="max over A's points")
     ax.set_xlabel("time (s)")
     ax.set_ylabel("distance (mm)")
-    ax.set_title(f"{label_a} vs {label_b}\nstep time ratio B/A = {rows[0][3]:.3g}")
+    ax.set_title(f"Distance between A's points and B's surface at the same material (u, v)\n"
+                 f"A: {label_a}    B: {label_b}\n"
+                 f"median step wall time B/A = {rows[0][3]:.3g}", fontsize="medium")
     ax.set_ylim(bottom=0.0)
     ax.ticklabel_format(axis="y", useOffset=False)
     ax.grid(True, alpha=0.3)
-    ax.legend()
+    ax.legend(loc="upper left")
+    if size_m:
+        scale = 1e-3 / size_m * 100.0  # mm -> % of the cloth size
+        right = ax.secondary_yaxis("right", functions=(lambda d: d * scale, lambda p: p / scale))
+        right.set_ylabel(f"% of cloth size ({1e3 * size_m:.3g} mm)")
     written = wio.save_figure(fig, path, svg=True)
     plt.close(fig)
     return written
+
+
+def format_table(rows):
+    """The per-frame distances as a text table (mm)."""
+    lines = [f"{'time (s)':>9} {'RMS (mm)':>9} {'max (mm)':>9}"]
+    lines += [f"{r[0]:9.4g} {1e3 * r[1]:9.4f} {1e3 * r[2]:9.4f}" for r in rows]
+    return "\n".join(lines)
 
 
 def main(argv=None):
@@ -264,13 +293,16 @@ def main(argv=None):
     parser.add_argument("run_b", metavar="RUN_B", help="continuum run folder (point data 'uv', triangles)")
     parser.add_argument("--out", required=True, metavar="CSV", help="distance table to write")
     parser.add_argument("--plot", metavar="PNG", help="also plot distances (PNG and SVG beside it)")
+    parser.add_argument("--table", action="store_true", help="print the per-frame distances (mm) on stdout")
     args = parser.parse_args(argv)
     try:
         rows, label_a, label_b = compare(args.run_a, args.run_b)
         write_csv(args.out, rows)
-        written = plot(args.plot, rows, label_a, label_b) if args.plot else []
+        written = plot(args.plot, rows, label_a, label_b, material_size(args.run_b)) if args.plot else []
     except wio.RunError as e:
         wio.fail(str(e))
+    if args.table:
+        print(format_table(rows))
     worst = max(rows, key=lambda r: r[2])
     print(f"{len(rows)} frame pairs; max distance {1e3 * worst[2]:.4g} mm at t = {worst[0]:.6g} s; "
           f"step time ratio B/A = {rows[0][3]:.4g}; wrote {', '.join([args.out] + written)}")

@@ -3,7 +3,8 @@
 
     plot_run.py RUN --out PNG [--partial]
 
-Top: kinetic, potential and total energy (J); bottom: the largest node speed
+Top: kinetic, potential and total energy (J, or mJ/µJ/nJ as the values
+need); bottom: the largest node speed
 (m/s). Writes PNG and an SVG beside it. --partial reads metrics.csv.part of an
 interrupted run. Missing or malformed inputs: a message on stderr and exit 2.
 """
@@ -15,6 +16,17 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import weavelab_io as wio  # noqa: E402
+
+
+def energy_unit(values):
+    """(scale, unit) so that `values * scale` reads in J, mJ, µJ or nJ."""
+    finite = np.abs(np.asarray(values, float))
+    finite = finite[np.isfinite(finite)]
+    top = float(finite.max()) if len(finite) else 0.0
+    for scale, unit in ((1.0, "J"), (1e3, "mJ"), (1e6, "µJ"), (1e9, "nJ")):
+        if top * scale >= 1.0:
+            return scale, unit
+    return (1e9, "nJ") if top > 0 else (1.0, "J")
 
 
 def plot(run, out, partial=False):
@@ -31,21 +43,25 @@ def plot(run, out, partial=False):
         raise wio.RunError(f"{run}: metrics.csv has no rows")
 
     fig, (ax_e, ax_v) = plt.subplots(2, 1, sharex=True, figsize=(7, 6))
-    ax_e.plot(t, kinetic, label="kinetic")
-    ax_e.plot(t, potential, label="potential")
-    ax_e.plot(t, kinetic + potential, "k--", lw=1, label="total")
-    ax_e.set_ylabel("energy (J)")
+    scale, unit = energy_unit(np.concatenate([kinetic, potential, kinetic + potential]))
+    ax_e.plot(t, scale * kinetic, label="kinetic")
+    ax_e.plot(t, scale * potential, label="potential")
+    ax_e.plot(t, scale * (kinetic + potential), "k--", lw=1, label="total")
+    ax_e.set_ylabel(f"energy ({unit})")
+    ax_e.set_title("energy (potential of the conservative terms)", fontsize="medium")
     ax_e.grid(True, alpha=0.3)
     ax_e.legend()
     ax_v.plot(t, speed, color="C3")
     ax_v.set_ylabel("max speed (m/s)")
+    ax_v.set_title("largest node speed", fontsize="medium")
     ax_v.set_xlabel("time (s)")
     ax_v.grid(True, alpha=0.3)
     title = wio.run_label(run)
-    if "step_wall_s" in metrics and len(metrics["step_wall_s"]):
-        median = float(np.median(metrics["step_wall_s"]))
+    wall = wio.step_wall_times(metrics, run) if "step_wall_s" in metrics else []
+    if len(wall):
+        median = float(np.median(wall))
         step = f"{median:.3g} s" if median >= 1.0 else f"{median * 1e3:.3g} ms"
-        title += f"\n{len(t)} steps, median step wall time {step}"
+        title += f"\n{len(wall)} steps, median step wall time {step}"
     fig.suptitle(title)
     written = wio.save_figure(fig, out, svg=True)
     plt.close(fig)

@@ -8,6 +8,8 @@ Triangles (and line cells, if they carry it) are coloured by the cell data
 The left view places each point at its material coordinates (point data "uv",
 or "u" and "v"); the right view shows the deformed cloth. K indexes the
 frames of the run's .pvd (default: the last; negative counts from the end).
+When a few cells carry far more than the rest (e.g. at the handles), the
+colour scale ends at the 98th percentile and the colour bar says so.
 Missing or malformed inputs: a message on stderr and exit status 2.
 """
 import argparse
@@ -18,6 +20,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import weavelab_io as wio  # noqa: E402
+
+CLIP_PERCENTILE = 98.0  # colour scale end when a few cells dominate (see plot())
 
 
 def tension_cells(mesh, label):
@@ -50,11 +54,18 @@ def plot(run, frame_index, out):
     mesh = wio.read_mesh(path)
     label = f"{run} frame {frame_index % len(entries)}"
     tri, t_tri, lines, t_lines, what = tension_cells(mesh, label)
-    uv = wio.material_coordinates(mesh, label)
-    x = np.asarray(mesh.points, float)[:, :3]
+    uv = 1e3 * wio.material_coordinates(mesh, label)  # drawn in mm
+    x = 1e3 * np.asarray(mesh.points, float)[:, :3]
     values = np.concatenate([t_tri, t_lines])
     finite = values[np.isfinite(values)]
     vmin, vmax = (float(finite.min()), float(finite.max())) if len(finite) else (0.0, 1.0)
+    # A few faces at the handles can carry far more than the rest: the colour
+    # scale then ends at the 98th percentile (the colour bar says so).
+    clip = float(np.percentile(finite, CLIP_PERCENTILE)) if len(finite) else vmax
+    clipped = clip > vmin and vmax - vmin > 2.0 * (clip - vmin)
+    true_max = vmax
+    if clipped:
+        vmax = clip
     if vmin == vmax:
         vmin, vmax = vmin - 0.5, vmax + 0.5
     cmap = plt.get_cmap("viridis")
@@ -72,21 +83,27 @@ def plot(run, frame_index, out):
     ax2.set_xlim(uv[:, 0].min(), uv[:, 0].max())
     ax2.set_ylim(uv[:, 1].min(), uv[:, 1].max())
     ax2.set_aspect("equal")
-    ax2.set_xlabel("material u (m)")
-    ax2.set_ylabel("material v (m)")
-    ax2.set_title("material plane")
+    ax2.invert_yaxis()  # v (row j) grows downward, as in the upright pose
+    ax2.set_xlabel("material u, warp (mm)")
+    ax2.set_ylabel("material v, weft (mm)")
+    ax2.set_title("material plane (u, v)")
     lo, hi = x.min(axis=0), x.max(axis=0)
     centre, half = (lo + hi) / 2, max(float((hi - lo).max()) / 2, 1e-12)
     ax3.set_xlim(centre[0] - half, centre[0] + half)
     ax3.set_ylim(centre[1] - half, centre[1] + half)
     ax3.set_zlim(centre[2] - half, centre[2] + half)
-    ax3.set_xlabel("x (m)")
-    ax3.set_ylabel("y (m)")
-    ax3.set_zlabel("z (m)")
-    ax3.set_title("deformed")
-    bar = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), ax=[ax2, ax3], shrink=0.85)
-    bar.set_label(f"{what} (N/m)")
-    fig.suptitle(f"{wio.run_label(run)} — t = {time:.6g} s")
+    for axis in (ax3.xaxis, ax3.yaxis, ax3.zaxis):
+        axis.set_major_locator(matplotlib.ticker.MaxNLocator(5))
+    ax3.set_xlabel("x (mm)", labelpad=6)
+    ax3.set_ylabel("y (mm)", labelpad=6)
+    ax3.set_zlabel("z (mm)", labelpad=6)
+    ax3.tick_params(labelsize="small")
+    ax3.set_title("deformed (3-D)")
+    bar = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), ax=[ax2, ax3], shrink=0.85, pad=0.06,
+                       extend="max" if clipped else "neither")
+    bar.set_label(f"{what} (N/m)" + (f"\nscale ends at the {CLIP_PERCENTILE:g}th percentile; max {true_max:.3g}"
+                                      if clipped else ""))
+    fig.suptitle(f"Tension map: {wio.run_label(run)}, t = {time:.6g} s")
     written = wio.save_figure(fig, out, svg=False)
     plt.close(fig)
     return written

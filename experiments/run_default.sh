@@ -1,11 +1,52 @@
 #!/usr/bin/env bash
 # The default experiment: the published hanging cloth in the wind (physics.md
-# §5.1), simulated at yarn level, with results under results/hanging_wind/.
+# §5.1), simulated at yarn level and as a continuum (triangle FEM, physics.md
+# §6) with backward Euler (be-linear, 500 steps each), then compared frame by
+# frame. Results under results/hanging_wind/:
+#   yarn/, fem/            the two runs (frames, metrics.csv, summary.json)
+#   compare.csv            per frame: RMS and max distance between the yarn
+#                          crossings and the FEM surface at the same material
+#                          (u, v), and the step-time ratio FEM/yarn
+#   compare.png/.svg       that distance over time
+#   fem_tension.png        the FEM tension map of the last frame
+#   yarn_energy.png/.svg, fem_energy.png/.svg   energy and speed over time
+# Each step stops the script with a message naming it when it fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiments/setup.sh
+
 scene=experiments/scenes/hanging_wind.toml
 out=results/hanging_wind
-build/weavelab run "$scene" --model yarn --out "$out/yarn"
-/usr/bin/python3 experiments/plot_run.py "$out/yarn" --out "$out/yarn_energy"
-echo "results in $out (open $out/yarn/run.pvd in ParaView)"
+python=/usr/bin/python3
+
+step() {  # step "description" command...: runs the command; on failure, says which step failed
+  local what=$1
+  shift
+  echo "== $what" >&2
+  local status=0
+  "$@" || status=$?
+  if [ "$status" -ne 0 ]; then
+    echo "run_default: step '$what' failed with exit status $status: $*" >&2
+    exit "$status"
+  fi
+}
+
+step "setup and build" experiments/setup.sh
+mkdir -p "$out"
+for model in yarn fem; do
+  step "$model run of $scene (be-linear)" \
+    build/weavelab run "$scene" --model "$model" --integrator be-linear --quiet --out "$out/$model"
+done
+step "compare yarn and fem" \
+  "$python" experiments/compare.py "$out/yarn" "$out/fem" --out "$out/compare.csv" --plot "$out/compare.png" \
+  --table >"$out/compare.txt"
+step "plot fem tension map" "$python" experiments/plot_tension.py "$out/fem" --out "$out/fem_tension.png"
+for model in yarn fem; do
+  step "plot $model energy" "$python" experiments/plot_run.py "$out/$model" --out "$out/${model}_energy.png"
+done
+
+echo
+echo "Yarn crossings vs FEM surface at the same material (u, v), per output frame:"
+cat "$out/compare.txt"
+echo
+echo "results in $out: compare.csv, compare.png, fem_tension.png, yarn_energy.png, fem_energy.png"
+echo "(open $out/yarn/run.pvd and $out/fem/run.pvd in ParaView)"

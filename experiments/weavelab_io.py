@@ -93,6 +93,15 @@ def metric(metrics, column, run="run"):
     return metrics[column]
 
 
+def step_wall_times(metrics, run="run"):
+    """Wall time of every step [s]: the "step_wall_s" column without the row of
+    the initial state (the driver's first row, at the start time with 0 s)."""
+    wall = metric(metrics, "step_wall_s", run)
+    if len(wall) and wall[0] == 0.0:
+        wall = wall[1:]
+    return wall
+
+
 def find_pvd(run, name=None):
     """The run's .pvd: <name>.pvd, or the only .pvd in the folder."""
     run = run_dir(run)

@@ -2,6 +2,8 @@
 // the same step matrix, measured in one run (design.md "Performance stance").
 //   weavelab_bench [--model yarn|fem] [--integrator be-linear] [scene ...]
 // Default scenes: the hanging cloth at 17×17, 65×65 and 129×129.
+//   weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]
+// FEM and yarn steps on one scene (compare_models.cpp).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "experiments/bench/compare_models.h"
 #include "experiments/driver/model_factory.h"
 #include "integrators/backward_euler.h"
 #include "models/scene/scene.h"
@@ -82,13 +85,15 @@ Row measure(const std::string& path, const std::string& model_name, const std::s
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && !std::strcmp(argv[1], "--compare-models")) return wl::bench::compare_models_main(argc - 2, argv + 2);
   std::string model = "yarn", integrator = "be-linear";
   std::vector<std::string> scenes;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--model") && i + 1 < argc) model = argv[++i];
     else if (!std::strcmp(argv[i], "--integrator") && i + 1 < argc) integrator = argv[++i];
     else if (!std::strcmp(argv[i], "--help")) {
-      std::printf("usage: weavelab_bench [--model yarn|fem] [--integrator be-linear|be-newton] [scene.toml ...]\n");
+      std::printf("usage: weavelab_bench [--model yarn|fem] [--integrator be-linear|be-newton] [scene.toml ...]\n"
+                  "       weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]\n");
       return 0;
     } else scenes.push_back(argv[i]);
   }

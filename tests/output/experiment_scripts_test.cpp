@@ -198,6 +198,21 @@ TEST(CompareScript, PointsOutsideTheSurfaceUseTheNearestTriangle) {
   EXPECT_NEAR(rows[0][1], std::sqrt((kOffset * kOffset + far * far) / 2), 1e-12);
 }
 
+TEST(CompareScript, StepTimeRatioSkipsTheInitialStateRow) {
+  ASSERT_TRUE(test::python_with("numpy, meshio"));
+  Runs runs;
+  // The driver's first metrics row is the initial state, with 0 s of step time:
+  // it is no step, so A's median step is that of {2, 3} s.
+  const auto start = runs.dir / "start";
+  write_run(start, "start", {0.0, 0.1, 0.2}, {0.0, 2.0, 3.0}, [](double t) { return yarn_frame(6, t, kOffset); });
+  const auto csv = runs.dir / "distance.csv";
+  const auto r = run_script("compare.py", test::shell_quote(start.string()) + " " +
+                                              test::shell_quote(runs.coarse.string()) + " --out " +
+                                              test::shell_quote(csv.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  expect_one_millimetre(csv, 6.0 / 2.5);
+}
+
 TEST(CompareScript, MissingRunFolderExitsWithStatus2) {
   ASSERT_TRUE(test::python_with("numpy, meshio"));
   Runs runs;
