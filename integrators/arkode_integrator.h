@@ -76,7 +76,8 @@ class ArkodeIntegrator : public Integrator {
   Vec mass_q_;                             // the q of msolver_'s factorization
   bool mass_factored_ = false;
   long own_setups_ = 0, own_solves_ = 0, last_nni_ = 0;
-  long attempts_setup_ = -1;  // ARKODE's step attempts at the last Newton-matrix setup
+  long attempts_setup_ = -1;
+  double t_setup_ = 0.0;  // ARKODE's step attempts at the last Newton-matrix setup
   IntegratorStats stats_, own_;
   std::string last_error_;
   // SUNDIALS objects: context first, memory last (destroyed first).

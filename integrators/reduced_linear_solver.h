@@ -37,9 +37,9 @@
 // stale or never factorized, evaluates K, D, M at the integrator's current
 // Newton iterate (SetupQuery) and refactorizes. SUNDIALS also treats such a
 // solver as "iterative" in two places, handled here: it reads the iteration
-// count (we report 1, so x is used), and ARKODE skips a solve whose
-// right-hand side is below eplifac·(nonlinear tolerance) — the integrators set
-// EpsLin tiny so every Newton correction is solved.
+// count (we report 1, so x is used), and some versions skip a solve whose
+// right-hand side is below eplifac·(nonlinear tolerance) — the ARKODE adapter
+// sets EpsLin tiny so every Newton correction is solved.
 #pragma once
 #include <functional>
 #include <memory>
