@@ -47,7 +47,9 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
     model.evaluate(t0, q_, v_, kMass, mev_);
     mass_ = mev_.mass;
   } else {
-    msolver_ = std::make_unique<SparseSolver>(model.pattern(), fixed_);
+    // M(q) is symmetric positive definite: Cholesky (CHOLMOD), twice as fast
+    // as LU for arkode-dirk on the yarn cloth; LU if Cholesky ever fails.
+    msolver_ = std::make_unique<SparseSolver>(model.pattern(), fixed_, SparseSolver::Backend::cholmod);
   }
 
   if (!ctx_) ctx_ = sun::make_context();
@@ -87,8 +89,8 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
       t_setup_ = t;
       return true;
     };
-    // Re-form M − γJ at every implicit stage (J at the stage's predicted
-    // state), at every new step attempt, and when γ changed by more than 20%
+    // Re-form M − γJ at every implicit stage at fixed steps (J at the stage's
+    // predicted state), at every new step attempt, and when γ changed by more than 20%
     // (ARKODE's dgmax). With ARKODE's default for matrix-based solvers (every
     // 20 steps) the Newton iteration on a linear problem stopped after one
     // iteration with a stale γ (its convergence-rate estimate is carried over
@@ -97,13 +99,19 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
     // 17×17 hanging cloth at h = 1 ms, 179 instead of 261 Newton iterations
     // per 10 steps (yarn), 166 instead of 223 (FEM), fewer right-hand sides
     // (each an M(q) factorization for the yarn) than extra factorizations.
-    auto stale = [this](const ReducedLinearSolver::Coefficients& at_setup) {
+    // Adaptive steps are small where the Newton matrix matters (ARKODE
+    // shrinks h on a convergence failure), so there it is re-formed per step
+    // attempt only: at rtol 1e-8 on the 6×6 yarn cloth (2 Newton iterations
+    // per stage) per-stage setups made arkode-dirk several times slower.
+    const bool per_stage = !opt.adaptive;
+    auto stale = [this, per_stage](const ReducedLinearSolver::Coefficients& at_setup) {
       long attempts = 0;
       double gamma = at_setup.beta, tc = t_setup_;
       ARKStepGetNumStepAttempts(mem_.get(), &attempts);
       ARKStepGetCurrentGamma(mem_.get(), &gamma);
       ARKStepGetCurrentTime(mem_.get(), &tc);
-      return attempts != attempts_setup_ || tc != t_setup_ || std::abs(gamma / at_setup.beta - 1.0) > 0.2;
+      return attempts != attempts_setup_ || (per_stage && tc != t_setup_) ||
+             std::abs(gamma / at_setup.beta - 1.0) > 0.2;
     };
     const unsigned filter = variant_ == Variant::imex ? kImplicitTerms : 0u;
     ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, filter, mass_in_arkode_, query, stale);
@@ -140,11 +148,19 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
 
 // Factorizes M(q) for the explicit form unless the last factorization was at
 // this very q (the explicit and implicit IMEX parts of one stage share it).
-bool ArkodeIntegrator::factor_mass_at(const Vec& q, double t) {
-  if (mass_factored_ && mass_q_.size() == q.size() && mass_q_ == q) return true;
-  model_->evaluate(t, q, vtmp_, kMass, mev_);
+// `mass` is M(q) when the caller already has it, else it is evaluated here.
+bool ArkodeIntegrator::factor_mass_at(const Vec& q, double t, const SparseMatrix* mass) {
+  if (mass_current(q)) return true;
+  if (!mass) {
+    model_->evaluate(t, q, vtmp_, kMass, mev_);
+    mass = &mev_.mass;
+  }
   ++own_setups_;
-  mass_factored_ = msolver_->factorize(mev_.mass);
+  mass_factored_ = msolver_->factorize(*mass);
+  if (!mass_factored_ && msolver_->backend() == SparseSolver::Backend::cholmod) {
+    msolver_ = std::make_unique<SparseSolver>(model_->pattern(), fixed_, SparseSolver::Backend::umfpack);
+    mass_factored_ = msolver_->factorize(*mass);
+  }
   mass_q_ = q;
   return mass_factored_;
 }
@@ -159,11 +175,13 @@ int ArkodeIntegrator::rhs(double t, N_Vector y, N_Vector ydot, unsigned filter, 
   if (!yy.allFinite()) return 1;  // recoverable: ARKODE retries with a smaller step
   qtmp_ = yy.head(n);
   vtmp_ = yy.tail(n);
-  model_->evaluate(t, qtmp_, vtmp_, kForce | filter, ev_);
+  // Without an IMEX filter, M(q) comes with the same evaluation when needed.
+  const bool with_mass = !mass_in_arkode_ && filter == 0 && !mass_current(qtmp_);
+  model_->evaluate(t, qtmp_, vtmp_, kForce | filter | (with_mass ? kMass : 0u), ev_);
   if (with_velocity) yd.head(n) = vtmp_;
   else yd.head(n).setZero();
   if (!mass_in_arkode_) {
-    if (!factor_mass_at(qtmp_, t)) return 1;
+    if (!factor_mass_at(qtmp_, t, with_mass ? &ev_.mass : nullptr)) return 1;
     msolver_->solve(ev_.force, acc_);
     ++own_solves_;
     yd.tail(n) = acc_;

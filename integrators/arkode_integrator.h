@@ -58,7 +58,8 @@ class ArkodeIntegrator : public Integrator {
   static int mass_times(N_Vector x, N_Vector mx, double t, void* self);
   static void error_handler(int code, const char* module, const char* function, char* msg, void* self);
   int rhs(double t, N_Vector y, N_Vector ydot, unsigned filter, bool with_velocity);
-  bool factor_mass_at(const Vec& q, double t);
+  bool factor_mass_at(const Vec& q, double t, const SparseMatrix* mass);
+  bool mass_current(const Vec& q) const { return mass_factored_ && mass_q_.size() == q.size() && mass_q_ == q; }
   StepResult failure(int flag);
   void update_stats();
 
