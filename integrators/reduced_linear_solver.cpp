@@ -56,6 +56,9 @@ ReducedLinearSolver::ReducedLinearSolver(SUNContext ctx, Model& model, unsigned 
       s_(model.pattern()),
       solver_(model.pattern(), model.fixed_dofs()) {
   for (int i : fixed_) pinned_[i] = 1;
+  // Newton corrections (and ARKODE's exact-mass solves of a well-conditioned
+  // M) need no iterative refinement: one forward/back substitution each.
+  solver_.set_refinement_steps(0);
   allocate_evaluation(model, ev_);
   allocate_evaluation(model, mev_);
   SUNLinearSolver s = SUNLinSolNewEmpty(ctx);
