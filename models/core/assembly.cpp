@@ -132,16 +132,10 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
         ql[a] = is_dof(i) ? q[i] : constants[constant_slot(i)];
         vl[a] = is_dof(i) ? v[i] : 0.0;
       }
-      // Zero only the requested outputs; skip the matrix scatter for a
-      // force-only request (the residual evaluations of IDA and ARKODE).
-      std::fill(fl, fl + n, 0.0);
-      if (want_k) std::fill(kl, kl + n * n, 0.0);
-      if (want_d) std::fill(dl, dl + n * n, 0.0);
-      if (want_m) std::fill(ml, ml + n * n, 0.0);
+      std::fill(fl, fl + n + 3 * n * n, 0.0);
       term.evaluate(e, ql, vl, out);
       for (int a = 0; a < n; ++a)
         if (is_dof(s[a])) f[s[a]] += fl[a];
-      if (!kv && !dv && !mv) continue;
       const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;
       for (int ab = 0; ab < n * n; ++ab) {
         const int sl = slots[ab];
