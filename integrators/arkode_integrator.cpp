@@ -25,8 +25,6 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   mem_.reset();
   mls_.reset();
   ls_.reset();
-  jac_.reset();
-  mass_.reset();
   model_ = &model;
   opt_ = opt;
   t_ = t0;
@@ -38,20 +36,21 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   stats_ = {};
   own_ = {};
   own_setups_ = own_solves_ = last_nni_ = 0;
+  attempts_setup_ = -1;
   last_error_.clear();
-  not_offered_.clear();
   allocate_evaluation(model, ev_);
+  allocate_evaluation(model, mev_);
   mass_in_arkode_ = !model.mass_depends_on_q();
-  if (!mass_in_arkode_ && variant_ != Variant::erk) {
-    not_offered_ = name() +
-                   " is not offered for a model whose mass matrix depends on q (" + model.name() +
-                   "): ARKODE accepts only a time-dependent mass matrix, and the Jacobian of the explicit form "
-                   "y' = (v, M(q)^-1 f) contains M^-1 df/dq, which is dense, so no sparse direct solver applies "
-                   "(use arkode-erk, ida or be-newton)";
-    return;
+  msolver_.reset();
+  mass_factored_ = false;
+  if (mass_in_arkode_) {
+    model.evaluate(t0, q_, v_, kMass, mev_);
+    mass_ = mev_.mass;
+  } else {
+    // M(q) is symmetric positive definite: Cholesky (CHOLMOD), twice as fast
+    // as LU for arkode-dirk on the yarn cloth; LU if Cholesky ever fails.
+    msolver_ = std::make_unique<SparseSolver>(model.pattern(), fixed_, SparseSolver::Backend::cholmod);
   }
-  if (!mass_in_arkode_) msolver_ = std::make_unique<SparseSolver>(model.pattern(), fixed_);
-  const auto backend = sun::resolve(opt.sparse_backend);
 
   if (!ctx_) ctx_ = sun::make_context();
   y_ = sun::make_vector(2 * n_, ctx_.get());
@@ -68,31 +67,78 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   void* m = mem_.get();
   auto check = [&](int flag, const char* what) {
     if (flag < 0)
-      throw std::runtime_error(name() + ": " + what + " failed: " + ARKStepGetReturnFlagName(flag));
+      throw std::runtime_error(name() + ": " + what + " failed: " + ARKStepGetReturnFlagName(flag) +
+                               (last_error_.empty() ? "" : " (" + last_error_ + ")"));
   };
   check(ARKStepSetErrHandlerFn(m, &ArkodeIntegrator::error_handler, this), "ARKStepSetErrHandlerFn");
   check(ARKStepSetUserData(m, this), "ARKStepSetUserData");
   check(ARKStepSStolerances(m, opt.rtol, opt.atol), "ARKStepSStolerances");
   if (variant_ != Variant::erk) {
-    jblock_ = std::make_unique<sun::BlockSystem>(model.pattern(), fixed_);
-    jac_ = sun::make_sparse_matrix(jblock_->matrix(), ctx_.get());
-    ls_ = sun::make_sparse_solver(backend, y_.get(), jac_.get(), ctx_.get());
-    check(ARKStepSetLinearSolver(m, ls_.get(), jac_.get()), "ARKStepSetLinearSolver");
-    check(ARKStepSetJacFn(m, &ArkodeIntegrator::jacobian), "ARKStepSetJacFn");
-    // Re-form and refactorize M − γJ every step (J itself is reused as ARKODE
-    // decides). With ARKODE's default (every 20 steps, or when γ changed by
-    // 20%) the Newton iteration on a linear problem stops after one iteration
-    // with a stale γ (its convergence-rate estimate is carried over from exact
-    // steps), and the adaptive error fell to order ~2 (global error ∝ tol^0.45
-    // on the spring chain); with one setup per step it is ∝ tol again.
-    check(ARKStepSetLSetupFrequency(m, 1), "ARKStepSetLSetupFrequency");
+    // A = M_blk − γ J (block mass) or I − γ J (explicit form, v rows × M(q)):
+    // α = 1, β = γ, k = γ, m = 1, d = γ, pinned rows identity.
+    const bool explicit_form = !mass_in_arkode_;
+    auto query = [this, explicit_form](double& t, const double*& y, ReducedLinearSolver::Coefficients& c) {
+      N_Vector yy = nullptr;
+      double gamma = 0.0;
+      if (ARKStepGetCurrentTime(mem_.get(), &t) < 0 || ARKStepGetCurrentState(mem_.get(), &yy) < 0 ||
+          ARKStepGetCurrentGamma(mem_.get(), &gamma) < 0 || !yy)
+        return false;
+      y = sun::data(yy);
+      c = {1.0, gamma, gamma, 1.0, gamma, 1.0, explicit_form};
+      ARKStepGetNumStepAttempts(mem_.get(), &attempts_setup_);
+      t_setup_ = t;
+      return true;
+    };
+    // Re-form M − γJ at every implicit stage at fixed steps (J at the stage's
+    // predicted state), at every new step attempt, and when γ changed by more than 20%
+    // (ARKODE's dgmax). With ARKODE's default for matrix-based solvers (every
+    // 20 steps) the Newton iteration on a linear problem stopped after one
+    // iteration with a stale γ (its convergence-rate estimate is carried over
+    // from exact steps) and the adaptive error fell to order ~2 (global error
+    // ∝ tol^0.45 on the spring chain). Per stage rather than per step: on the
+    // 17×17 hanging cloth at h = 1 ms, 179 instead of 261 Newton iterations
+    // per 10 steps (yarn), 166 instead of 223 (FEM), fewer right-hand sides
+    // (each an M(q) factorization for the yarn) than extra factorizations.
+    // Adaptive steps are small where the Newton matrix matters (ARKODE
+    // shrinks h on a convergence failure), so there it is re-formed per step
+    // attempt only: at rtol 1e-8 on the 6×6 yarn cloth (2 Newton iterations
+    // per stage) per-stage setups made arkode-dirk several times slower.
+    const bool per_stage = !opt.adaptive;
+    auto stale = [this, per_stage](const ReducedLinearSolver::Coefficients& at_setup) {
+      long attempts = 0;
+      double gamma = at_setup.beta, tc = t_setup_;
+      ARKStepGetNumStepAttempts(mem_.get(), &attempts);
+      ARKStepGetCurrentGamma(mem_.get(), &gamma);
+      ARKStepGetCurrentTime(mem_.get(), &tc);
+      return attempts != attempts_setup_ || (per_stage && tc != t_setup_) ||
+             std::abs(gamma / at_setup.beta - 1.0) > 0.2;
+    };
+    const unsigned filter = variant_ == Variant::imex ? kImplicitTerms : 0u;
+    ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, filter, mass_in_arkode_, query, stale);
+    check(ARKStepSetLinearSolver(m, ls_->get(), nullptr), "ARKStepSetLinearSolver");
+    // A direct solve: rule out the "right-hand side already small, return 0"
+    // shortcut SUNDIALS takes for iterative linear solvers (defensive: a
+    // matrix-embedded solver counts as iterative in some SUNDIALS versions).
+    check(ARKStepSetEpsLin(m, 1e-12), "ARKStepSetEpsLin");
+    if (!opt.adaptive) check(ARKStepSetMaxNonlinIters(m, opt.newton_max_iters), "ARKStepSetMaxNonlinIters");
+    // Initial Newton guess of each stage from the maximum-order interpolant of
+    // the last step (ARKODE's predictor 1) instead of the last solution. On
+    // the hanging cloth at h = 1 ms, Newton iterations per 10 steps (yarn /
+    // FEM): trivial predictor, setup per step 302 / 282; predictor 1, per step
+    // 261 / 223; predictor 1, per stage 179 / 166.
+    check(ARKStepSetPredictorMethod(m, 1), "ARKStepSetPredictorMethod");
   }
   if (mass_in_arkode_) {
-    mblock_ = std::make_unique<sun::BlockSystem>(model.pattern(), fixed_);
-    mass_ = sun::make_sparse_matrix(mblock_->matrix(), ctx_.get());
-    mls_ = sun::make_sparse_solver(backend, y_.get(), mass_.get(), ctx_.get());
-    check(ARKStepSetMassLinearSolver(m, mls_.get(), mass_.get(), SUNFALSE), "ARKStepSetMassLinearSolver");
-    check(ARKStepSetMassFn(m, &ArkodeIntegrator::mass_fn), "ARKStepSetMassFn");
+    auto query = [this](double& t, const double*& y, ReducedLinearSolver::Coefficients& c) {
+      t = t_;
+      y = sun::data(y_.get());  // constant M: any state will do
+      c = {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, false};
+      return true;
+    };
+    mls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, true, query);
+    check(ARKStepSetMassLinearSolver(m, mls_->get(), nullptr, SUNFALSE), "ARKStepSetMassLinearSolver");
+    check(ARKStepSetMassTimes(m, nullptr, &ArkodeIntegrator::mass_times, this), "ARKStepSetMassTimes");
+    check(ARKStepSetMassEpsLin(m, 1e-12), "ARKStepSetMassEpsLin");
   }
   if (opt.adaptive) check(ARKStepSetInitStep(m, opt.dt), "ARKStepSetInitStep");
   else check(ARKStepSetFixedStep(m, opt.dt), "ARKStepSetFixedStep");
@@ -100,9 +146,28 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   check(ARKStepSetMaxNumSteps(m, 1000000), "ARKStepSetMaxNumSteps");
 }
 
-// ydot = (v, g) where g = f_selected (mass given to ARKODE) or M(q)⁻¹ f
-// (mass depends on q, ERK only); zero on pinned DoFs. `with_velocity` false
-// gives the explicit IMEX part (0, f_explicit).
+// Factorizes M(q) for the explicit form unless the last factorization was at
+// this very q (the explicit and implicit IMEX parts of one stage share it).
+// `mass` is M(q) when the caller already has it, else it is evaluated here.
+bool ArkodeIntegrator::factor_mass_at(const Vec& q, double t, const SparseMatrix* mass) {
+  if (mass_current(q)) return true;
+  if (!mass) {
+    model_->evaluate(t, q, vtmp_, kMass, mev_);
+    mass = &mev_.mass;
+  }
+  ++own_setups_;
+  mass_factored_ = msolver_->factorize(*mass);
+  if (!mass_factored_ && msolver_->backend() == SparseSolver::Backend::cholmod) {
+    msolver_ = std::make_unique<SparseSolver>(model_->pattern(), fixed_, SparseSolver::Backend::umfpack);
+    mass_factored_ = msolver_->factorize(*mass);
+  }
+  mass_q_ = q;
+  return mass_factored_;
+}
+
+// ydot = (v, g) where g = f_selected (mass given to ARKODE) or M(q)⁻¹ f_selected
+// (explicit form); zero on pinned DoFs. `with_velocity` false gives the
+// explicit IMEX part (0, g_explicit).
 int ArkodeIntegrator::rhs(double t, N_Vector y, N_Vector ydot, unsigned filter, bool with_velocity) {
   const int n = n_;
   Eigen::Map<const Vec> yy(sun::data(y), 2 * n);
@@ -110,13 +175,13 @@ int ArkodeIntegrator::rhs(double t, N_Vector y, N_Vector ydot, unsigned filter, 
   if (!yy.allFinite()) return 1;  // recoverable: ARKODE retries with a smaller step
   qtmp_ = yy.head(n);
   vtmp_ = yy.tail(n);
-  const bool solve_mass = !mass_in_arkode_;
-  model_->evaluate(t, qtmp_, vtmp_, kForce | filter | (solve_mass ? kMass : 0u), ev_);
+  // Without an IMEX filter, M(q) comes with the same evaluation when needed.
+  const bool with_mass = !mass_in_arkode_ && filter == 0 && !mass_current(qtmp_);
+  model_->evaluate(t, qtmp_, vtmp_, kForce | filter | (with_mass ? kMass : 0u), ev_);
   if (with_velocity) yd.head(n) = vtmp_;
   else yd.head(n).setZero();
-  if (solve_mass) {
-    ++own_setups_;
-    if (!msolver_->factorize(ev_.mass)) return 1;
+  if (!mass_in_arkode_) {
+    if (!factor_mass_at(qtmp_, t, with_mass ? &ev_.mass : nullptr)) return 1;
     msolver_->solve(ev_.force, acc_);
     ++own_solves_;
     yd.tail(n) = acc_;
@@ -137,27 +202,15 @@ int ArkodeIntegrator::rhs_implicit(double t, N_Vector y, N_Vector ydot, void* se
   return sun::user_data_as<ArkodeIntegrator>(self).rhs(t, y, ydot, kImplicitTerms, true);
 }
 
-int ArkodeIntegrator::jacobian(double t, N_Vector y, N_Vector, SUNMatrix J, void* self, N_Vector, N_Vector,
-                               N_Vector) {
+// M_blk x = (x_q, M x_v), pinned rows identity.
+int ArkodeIntegrator::mass_times(N_Vector x, N_Vector mx, double, void* self) {
   ArkodeIntegrator& s = sun::user_data_as<ArkodeIntegrator>(self);
   const int n = s.n_;
-  Eigen::Map<const Vec> yy(sun::data(y), 2 * n);
-  s.qtmp_ = yy.head(n);
-  s.vtmp_ = yy.tail(n);
-  const unsigned filter = s.variant_ == Variant::imex ? kImplicitTerms : 0u;
-  s.model_->evaluate(t, s.qtmp_, s.vtmp_, kForce | kDfdq | kDfdv | filter, s.ev_);
-  // ∂(v, f)/∂(q, v) = [0 I ; ∂f/∂q ∂f/∂v]; pinned rows zero.
-  s.jblock_->fill(0.0, 1.0, 1.0, &s.ev_.dfdq, 1.0, &s.ev_.dfdv, 0.0, nullptr, 0.0);
-  sun::copy_to(s.jblock_->matrix(), J);
-  return s.jblock_->matrix().coeffs().allFinite() ? 0 : 1;
-}
-
-int ArkodeIntegrator::mass_fn(double t, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector) {
-  ArkodeIntegrator& s = sun::user_data_as<ArkodeIntegrator>(self);
-  s.model_->evaluate(t, s.q_, s.v_, kMass, s.ev_);  // constant M: any state will do
-  // [I 0 ; 0 M], pinned rows identity.
-  s.mblock_->fill(1.0, 0.0, 0.0, nullptr, 0.0, nullptr, 1.0, &s.ev_.mass, 1.0);
-  sun::copy_to(s.mblock_->matrix(), M);
+  Eigen::Map<const Vec> xx(sun::data(x), 2 * n);
+  Eigen::Map<Vec> out(sun::data(mx), 2 * n);
+  out.head(n) = xx.head(n);
+  out.tail(n) = s.mass_ * xx.tail(n);
+  for (int i : s.fixed_) out[n + i] = xx[n + i];
   return 0;
 }
 
@@ -168,26 +221,18 @@ void ArkodeIntegrator::error_handler(int, const char*, const char* function, cha
 
 void ArkodeIntegrator::update_stats() {
   void* m = mem_.get();
-  long steps = 0, etf = 0, sfails = 0, nfe = 0, nfi = 0, nje = 0, nls = 0, nms = 0, nmsolve = 0, nni = 0;
+  long steps = 0, etf = 0, sfails = 0, nfe = 0, nfi = 0, nni = 0;
   ARKStepGetNumSteps(m, &steps);
   ARKStepGetNumErrTestFails(m, &etf);
   ARKStepGetNumStepSolveFails(m, &sfails);
   ARKStepGetNumRhsEvals(m, &nfe, &nfi);
-  if (ls_) {
-    ARKStepGetNumJacEvals(m, &nje);
-    ARKStepGetNumLinSolvSetups(m, &nls);
-    ARKStepGetNumNonlinSolvIters(m, &nni);
-  }
-  if (mls_) {
-    ARKStepGetNumMassSetups(m, &nms);
-    ARKStepGetNumMassSolves(m, &nmsolve);
-  }
+  if (ls_) ARKStepGetNumNonlinSolvIters(m, &nni);
   stats_.steps = steps;
   stats_.rejected_steps = etf + sfails;
   stats_.rhs_evals = nfe + nfi;
-  stats_.jac_evals = nje;
-  stats_.linear_setups = nls + nms + own_setups_;
-  stats_.linear_solves = nni + nmsolve + own_solves_;  // direct solver: one solve per Newton iteration
+  stats_.jac_evals = ls_ ? ls_->setups() : 0;  // every Newton-matrix setup evaluates ∂f/∂q, ∂f/∂v
+  stats_.linear_setups = (ls_ ? ls_->setups() : 0) + (mls_ ? mls_->setups() : 0) + own_setups_;
+  stats_.linear_solves = (ls_ ? ls_->solves() : 0) + (mls_ ? mls_->solves() : 0) + own_solves_;
   stats_.nonlinear_iters = nni;
   stats_.wall_s = own_.wall_s;
   stats_.cpu_s = own_.cpu_s;
@@ -206,7 +251,6 @@ StepResult ArkodeIntegrator::failure(int flag) {
 }
 
 StepResult ArkodeIntegrator::advance_to(double t_out) {
-  if (!not_offered_.empty()) return {Outcome::not_offered, not_offered_};
   if (!mem_.get()) return {Outcome::diverged, name() + ": not initialized"};
   StepResult result;
   {

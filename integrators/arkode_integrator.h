@@ -1,30 +1,40 @@
 // SUNDIALS ARKODE (ARKStep) on the first-order system in y = (q, v):
 //   arkode-erk:  explicit adaptive Runge–Kutta (default order 4),
-//   arkode-dirk: diagonally implicit RK (default order 4) with the analytic
-//                sparse Jacobian [0 I ; ∂f/∂q ∂f/∂v] and a sparse direct solver,
+//   arkode-dirk: diagonally implicit RK (default order 4, SDIRK),
 //   arkode-imex: additive RK (ARK4(3)6L): internal forces implicit, terms with
-//                Term::imex_explicit() (gravity, wind) explicit.
-// Mass: a constant M (FEM, mass_depends_on_q() false) is given to ARKODE
-// directly as the time-independent block mass [I 0 ; 0 M]
-// (ARKStepSetMassLinearSolver), with the right-hand side (v, f). A mass M(q)
-// (yarn) is offered for arkode-erk only: the right-hand side is
-// (v, M(q)⁻¹ f), refactorizing M with SparseSolver on every evaluation (one
-// sparse LU per RK stage, i.e. ~6 per step for the default ERK). For
-// arkode-dirk/-imex it is NOT OFFERED: ARKODE accepts only a time-dependent
-// mass matrix, and the Jacobian of (v, M(q)⁻¹f) contains M⁻¹∂f/∂q, which is
-// dense; advance_to then returns Outcome::not_offered saying so.
+//                Term::imex_explicit() (gravity, wind) explicit; the Newton
+//                matrix holds the Jacobian of the implicit terms only.
+// Mass:
+//  - constant M (FEM, mass_depends_on_q() false): given to ARKODE directly as
+//    the time-independent block mass [I 0 ; 0 M] with the right-hand side
+//    (v, f): a matrix-embedded mass solver (ReducedLinearSolver: x_q = b_q,
+//    M x_v = b_v, factorized once) and the product M_blk·x (ARKStepSetMassTimes).
+//  - M(q) (yarn): ARKODE accepts only a time-dependent mass, so the right-hand
+//    side is the explicit form y′ = (v, M(q)⁻¹ f), one sparse factorization of
+//    M(q) per distinct state (the IMEX parts at one stage share it). The RK
+//    method is then applied to the exact ODE; only its Newton matrix is
+//    approximate (below).
+// Newton systems (dirk, imex) go to ReducedLinearSolver: with the block mass,
+// A = M_blk − γJ = [I, −γI ; −γK, M − γD] is solved as
+// (M − γD − γ²K) x_v = b_v + γK b_q, x_q = b_q + γ x_v; in the explicit form,
+// A = I − γ[0 I ; M⁻¹K M⁻¹D] has its v rows multiplied by M(q) first, giving
+// the same n×n matrix with b_v → M b_v. APPROXIMATION (explicit form): the
+// ∂(M(q)⁻¹)/∂q · f term of the Jacobian is neglected and M is taken at the
+// Newton iterate of the setup; the Newton iteration tolerates this.
+// Fixed step (adaptive = false): ARKStepSetFixedStep(dt); the Newton iteration
+// may then take up to IntegratorOptions::newton_max_iters iterations (ARKODE's
+// default of 3 is tuned for adaptive steps, where a failure just shrinks h).
 // Pinned DoFs: zero right-hand side (and identity mass rows): q, v stay fixed.
 // Stepping: ARK_ONE_STEP with the stop time set to t_out; every return is one
 // accepted step (on_step, model.accept_step and check_state per step).
-// Fixed step (adaptive = false): ARKStepSetFixedStep(dt).
 #pragma once
 #include <memory>
 #include <string>
 
 #include "integrators/integrator.h"
+#include "integrators/reduced_linear_solver.h"
 #include "integrators/sparse_solver.h"
 #include "integrators/sundials_handles.h"
-#include "integrators/sundials_sparse.h"
 
 namespace wl {
 
@@ -40,17 +50,16 @@ class ArkodeIntegrator : public Integrator {
   const Vec& q() const override { return q_; }
   const Vec& v() const override { return v_; }
   const IntegratorStats& stats() const override { return stats_; }
-  // Empty when the model/integrator pair is offered, else the reason.
-  const std::string& not_offered_reason() const { return not_offered_; }
 
  private:
   static int rhs_full(double t, N_Vector y, N_Vector ydot, void* self);
   static int rhs_explicit(double t, N_Vector y, N_Vector ydot, void* self);
   static int rhs_implicit(double t, N_Vector y, N_Vector ydot, void* self);
-  static int jacobian(double t, N_Vector y, N_Vector fy, SUNMatrix J, void* self, N_Vector, N_Vector, N_Vector);
-  static int mass_fn(double t, SUNMatrix M, void* self, N_Vector, N_Vector, N_Vector);
+  static int mass_times(N_Vector x, N_Vector mx, double t, void* self);
   static void error_handler(int code, const char* module, const char* function, char* msg, void* self);
   int rhs(double t, N_Vector y, N_Vector ydot, unsigned filter, bool with_velocity);
+  bool factor_mass_at(const Vec& q, double t, const SparseMatrix* mass);
+  bool mass_current(const Vec& q) const { return mass_factored_ && mass_q_.size() == q.size() && mass_q_ == q; }
   StepResult failure(int flag);
   void update_stats();
 
@@ -61,19 +70,21 @@ class ArkodeIntegrator : public Integrator {
   Vec q_, v_, qtmp_, vtmp_, acc_;
   int n_ = 0;
   std::vector<int> fixed_;
-  Evaluation ev_;
+  Evaluation ev_, mev_;
   bool mass_in_arkode_ = false;
-  std::string not_offered_;
-  std::unique_ptr<sun::BlockSystem> jblock_, mblock_;
-  std::unique_ptr<SparseSolver> msolver_;  // M(q) solves in the ERK right-hand side
+  SparseMatrix mass_;  // constant M (mass in ARKODE)
+  std::unique_ptr<SparseSolver> msolver_;  // M(q) solves in the explicit-form right-hand side
+  Vec mass_q_;                             // the q of msolver_'s factorization
+  bool mass_factored_ = false;
   long own_setups_ = 0, own_solves_ = 0, last_nni_ = 0;
+  long attempts_setup_ = -1;
+  double t_setup_ = 0.0;  // ARKODE's step attempts at the last Newton-matrix setup
   IntegratorStats stats_, own_;
   std::string last_error_;
   // SUNDIALS objects: context first, memory last (destroyed first).
   sun::Context ctx_;
   sun::Vector y_;
-  sun::Matrix jac_, mass_;
-  sun::LinearSolver ls_, mls_;
+  std::unique_ptr<ReducedLinearSolver> ls_, mls_;
   sun::ArkStepMemory mem_;
 };
 

@@ -16,10 +16,8 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   // Release any previous run (memory before the objects it uses).
   mem_.reset();
   ls_.reset();
-  jac_.reset();
   model_ = &model;
   opt_ = opt;
-  backend_ = sun::resolve(opt.sparse_backend);
   t_ = t0;
   n_ = model.num_dofs();
   fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
@@ -46,12 +44,38 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   y << q_, v_;
   yp << v_, a0;
 
-  block_ = std::make_unique<sun::BlockSystem>(model.pattern(), fixed_);
-  jac_ = sun::make_sparse_matrix(block_->matrix(), ctx_.get());
-  ls_ = sun::make_sparse_solver(backend_, y_.get(), jac_.get(), ctx_.get());
-
   mem_ = sun::IdaMemory(IDACreate(ctx_.get()));
   void* m = mem_.get();
+  // J = [c_j I, −I ; −K, c_j M − D], pinned rows c_j I: α = c_j, β = 1, k = 1, m = c_j, d = 1, p = c_j.
+  auto query = [this](double& t, const double*& y, ReducedLinearSolver::Coefficients& c) {
+    N_Vector yy = nullptr;
+    double cj = 0.0;
+    if (IDAGetCurrentTime(mem_.get(), &t) < 0 || IDAGetCurrentY(mem_.get(), &yy) < 0 ||
+        IDAGetCurrentCj(mem_.get(), &cj) < 0 || !yy)
+      return false;
+    y = sun::data(yy);
+    c = {cj, 1.0, 1.0, cj, 1.0, cj, false};
+    cj_setup_ = cj;
+    IDAGetNumNonlinSolvConvFails(mem_.get(), &ncf_setup_);
+    return true;
+  };
+  // IDA's own rule for matrix-based solvers: re-form when c_j moved outside
+  // [0.6, 1/0.6]·c_j,setup (XRATE 0.25), and after a failed Newton iteration.
+  auto stale = [this](const ReducedLinearSolver::Coefficients& at_setup) {
+    double cj = at_setup.alpha;
+    long ncf = 0;
+    IDAGetCurrentCj(mem_.get(), &cj);
+    IDAGetNumNonlinSolvConvFails(mem_.get(), &ncf);
+    const double ratio = cj / at_setup.alpha;
+    return ratio < 0.6 || ratio > 1.0 / 0.6 || ncf != ncf_setup_;
+  };
+  auto scale = [this]() {
+    double cj = cj_setup_;
+    IDAGetCurrentCj(mem_.get(), &cj);
+    return 2.0 / (1.0 + cj / cj_setup_);
+  };
+  ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, !model.mass_depends_on_q(), query, stale,
+                                              scale);
   auto check = [&](int flag, const char* what) {
     if (flag < 0) throw std::runtime_error(std::string("ida: ") + what + " failed: " + IDAGetReturnFlagName(flag));
   };
@@ -59,8 +83,7 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   check(IDAInit(m, &IdaIntegrator::residual, t0, y_.get(), yp_.get()), "IDAInit");
   check(IDASetUserData(m, this), "IDASetUserData");
   check(IDASStolerances(m, opt.rtol, opt.atol), "IDASStolerances");
-  check(IDASetLinearSolver(m, ls_.get(), jac_.get()), "IDASetLinearSolver");
-  check(IDASetJacFn(m, &IdaIntegrator::jacobian), "IDASetJacFn");
+  check(IDASetLinearSolver(m, ls_->get(), nullptr), "IDASetLinearSolver");
   check(IDASetInitStep(m, opt.dt), "IDASetInitStep");
   if (!opt.adaptive) check(IDASetMaxStep(m, opt.dt), "IDASetMaxStep");
   check(IDASetMinStep(m, opt.min_step), "IDASetMinStep");
@@ -86,21 +109,6 @@ int IdaIntegrator::residual(double t, N_Vector y, N_Vector yp, N_Vector r, void*
   return rr.allFinite() ? 0 : 1;
 }
 
-int IdaIntegrator::jacobian(double t, double cj, N_Vector y, N_Vector, N_Vector, SUNMatrix J, void* self, N_Vector,
-                            N_Vector, N_Vector) {
-  IdaIntegrator& s = sun::user_data_as<IdaIntegrator>(self);
-  const int n = s.n_;
-  Eigen::Map<const Vec> yy(sun::data(y), 2 * n);
-  const bool mq = s.model_->mass_depends_on_q();
-  const Vec q = yy.head(n), v = yy.tail(n);
-  s.model_->evaluate(t, q, v, kForce | kDfdq | kDfdv | (mq ? kMass : 0u), s.ev_);
-  const SparseMatrix& M = mq ? s.ev_.mass : s.mass_;
-  // [c_j I, −I ; −K, c_j M − D], ∂(M v′)/∂q neglected.
-  s.block_->fill(cj, -1.0, -1.0, &s.ev_.dfdq, -1.0, &s.ev_.dfdv, cj, &M, cj);
-  sun::copy_to(s.block_->matrix(), J);
-  return s.block_->matrix().coeffs().allFinite() ? 0 : 1;
-}
-
 void IdaIntegrator::error_handler(int code, const char* module, const char* function, char* msg, void* self) {
   IdaIntegrator& s = sun::user_data_as<IdaIntegrator>(self);
   s.last_error_ = std::string(function ? function : "") + ": " + (msg ? msg : "");
@@ -108,20 +116,18 @@ void IdaIntegrator::error_handler(int code, const char* module, const char* func
 
 void IdaIntegrator::update_stats() {
   void* m = mem_.get();
-  long steps = 0, etf = 0, ncf = 0, res = 0, jac = 0, setups = 0, nni = 0;
+  long steps = 0, etf = 0, ncf = 0, res = 0, nni = 0;
   IDAGetNumSteps(m, &steps);
   IDAGetNumErrTestFails(m, &etf);
   IDAGetNumNonlinSolvConvFails(m, &ncf);
   IDAGetNumResEvals(m, &res);
-  IDAGetNumJacEvals(m, &jac);
-  IDAGetNumLinSolvSetups(m, &setups);
   IDAGetNumNonlinSolvIters(m, &nni);
   stats_.steps = steps;
   stats_.rejected_steps = etf + ncf;
   stats_.rhs_evals = res;
-  stats_.jac_evals = jac;
-  stats_.linear_setups = setups;
-  stats_.linear_solves = nni;  // a direct solver: one solve per Newton iteration
+  stats_.jac_evals = ls_ ? ls_->setups() : 0;  // every setup evaluates ∂f/∂q, ∂f/∂v
+  stats_.linear_setups = ls_ ? ls_->setups() : 0;
+  stats_.linear_solves = ls_ ? ls_->solves() : 0;
   stats_.nonlinear_iters = nni;
   stats_.wall_s = own_.wall_s;
   stats_.cpu_s = own_.cpu_s;

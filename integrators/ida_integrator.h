@@ -6,9 +6,13 @@
 // APPROXIMATION: the term ∂(M(q) v′)/∂q is neglected (it is zero for a
 // constant mass; for the yarn model's M(q) the Newton iteration converges with
 // this inexact Jacobian). Pinned DoFs get the equations q′ = 0, v′ = 0.
-// The Jacobian goes to a sparse direct solver: SUNDIALS' KLU (the default,
-// measured faster) or a custom SUNLinearSolver around SparseSolver (UMFPACK),
-// chosen by IntegratorOptions::sparse_backend. Initial accelerations are consistent:
+// The Newton systems J x = b are solved by ReducedLinearSolver
+// (integrators/reduced_linear_solver.h): x_q = (b_q + x_v)/c_j eliminated, one
+// n×n sparse solve (c_j M − ∂f/∂v − ∂f/∂q / c_j) x_v = b_v + ∂f/∂q b_q / c_j;
+// the 2n×2n block matrix is never formed. As IDA does for its matrix-based
+// solvers, the matrix is re-formed when c_j left [0.6, 1/0.6]·c_j,setup or a
+// Newton iteration failed, and a solution computed with a stale c_j is scaled
+// by 2/(1 + c_j/c_j,setup). Initial accelerations are consistent:
 // v′₀ = M⁻¹ f(t0, q0, v0).
 // Stepping: IDA_ONE_STEP with the stop time set to t_out, so every return is
 // one accepted step (on_step, model.accept_step, check_state per step) and the
@@ -21,7 +25,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/sundials_handles.h"
-#include "integrators/sundials_sparse.h"
+#include "integrators/reduced_linear_solver.h"
 
 namespace wl {
 
@@ -36,27 +40,23 @@ class IdaIntegrator : public Integrator {
   const Vec& q() const override { return q_; }
   const Vec& v() const override { return v_; }
   const IntegratorStats& stats() const override { return stats_; }
-  // The sparse backend in use ("klu" or "umfpack").
-  std::string linear_solver() const { return sun::backend_name(backend_); }
 
  private:
   static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
-  static int jacobian(double t, double cj, N_Vector y, N_Vector yp, N_Vector r, SUNMatrix J, void* self,
-                      N_Vector, N_Vector, N_Vector);
   static void error_handler(int code, const char* module, const char* function, char* msg, void* self);
   StepResult failure(int flag);
   void update_stats();
 
   Model* model_ = nullptr;
   IntegratorOptions opt_;
-  IntegratorOptions::SparseBackend backend_ = IntegratorOptions::SparseBackend::klu;
   double t_ = 0.0;
   Vec q_, v_;
   int n_ = 0;
   std::vector<int> fixed_;
   Evaluation ev_;
   SparseMatrix mass_;  // constant mass (when !mass_depends_on_q)
-  std::unique_ptr<sun::BlockSystem> block_;
+  double cj_setup_ = 1.0;  // c_j of the last Newton-matrix setup
+  long ncf_setup_ = 0;     // IDA's Newton convergence failures at that setup
   IntegratorStats stats_;
   IntegratorStats own_;  // wall/CPU time accumulated here
   std::string last_error_;
@@ -64,8 +64,7 @@ class IdaIntegrator : public Integrator {
   // SUNDIALS objects: context first, memory last (destroyed first).
   sun::Context ctx_;
   sun::Vector y_, yp_;
-  sun::Matrix jac_;
-  sun::LinearSolver ls_;
+  std::unique_ptr<ReducedLinearSolver> ls_;
   sun::IdaMemory mem_;
 };
 

@@ -38,11 +38,6 @@ struct IntegratorOptions {
   int newton_max_iters = 20;
   // A state whose max |v| exceeds this is a divergence [m/s].
   double runaway_speed = 1e4;
-  // Sparse direct solver inside the SUNDIALS integrators: automatic = the
-  // measured faster one (SUNDIALS' KLU), or force KLU / UMFPACK (the custom
-  // SUNLinearSolver around SparseSolver).
-  enum class SparseBackend { automatic, klu, umfpack };
-  SparseBackend sparse_backend = SparseBackend::automatic;
 };
 
 // One accepted step, for metrics and progress.

@@ -58,6 +58,8 @@ SparseSolver::SparseSolver(const SparseMatrix& pattern, std::span<const int> fix
 
 SparseSolver::~SparseSolver() = default;
 
+void SparseSolver::set_refinement_steps(int steps) { impl_->lu.umfpackControl()(UMFPACK_IRSTEP) = steps; }
+
 bool SparseSolver::factorize(const SparseMatrix& a) {
   double* dst = reduced_.valuePtr();
   const double* src = a.valuePtr();

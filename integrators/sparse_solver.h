@@ -27,6 +27,10 @@ class SparseSolver {
   // Solves A x = b on the free DoFs; x is zero on fixed DoFs.
   void solve(const Vec& b, Vec& x) const;
   int num_free() const { return static_cast<int>(free_.size()); }
+  // UMFPACK's iterative refinement steps per solve (its default: up to 2).
+  // Inside a Newton iteration the iteration itself refines: 0 saves the
+  // residual and the extra triangular solves.
+  void set_refinement_steps(int steps);
   Backend backend() const { return backend_; }
 
  private:

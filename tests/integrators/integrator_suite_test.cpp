@@ -31,8 +31,8 @@ const std::vector<Traits>& all_traits() {
       {"be-newton", 1, false, Energy::dissipative, true, false},
       {"ida", 0, false, Energy::accurate, true, true},
       {"arkode-erk", 4, true, Energy::accurate, true, true},
-      {"arkode-dirk", 4, false, Energy::accurate, false, true},
-      {"arkode-imex", 4, false, Energy::accurate, false, true},
+      {"arkode-dirk", 4, false, Energy::accurate, true, true},
+      {"arkode-imex", 4, false, Energy::accurate, true, true},
       {"symplectic", 1, true, Energy::bounded, true, false},
   };
   return t;
