@@ -226,6 +226,7 @@ Reference load_or_compute_reference(const Scene& scene, const std::string& scene
     opt.rtol = rtol;
     opt.atol = rtol * options.atol_per_rtol;
     opt.dt = options.initial_dt;
+    opt.max_steps = options.max_steps;
     if (options.progress)
       std::fprintf(stderr, "  reference %s: %s at rtol %g, atol %g ...\n", model_name.c_str(),
                    options.integrator.c_str(), opt.rtol, opt.atol);

@@ -78,6 +78,7 @@ struct ReferenceOptions {
   double required_rtol = 1e-9;                // a reference looser than this is reported (and flagged)
   double atol_per_rtol = 1e-3;                // atol = rtol × this [m, m/s]
   double initial_dt = 1e-6;                   // initial step hint [s]
+  long max_steps = IntegratorOptions{}.max_steps;  // per attempt; beyond it the attempt fails (max_steps)
   bool progress = true;
 };
 

@@ -45,7 +45,7 @@ std::vector<std::string> csv_row(const WorkPrecisionRow& r) {
           csv_number(r.rtol),
           csv_number(r.atol),
           csv_number(r.dt),
-          to_string(r.run.result.outcome),
+          r.outcome(),
           sundials_flag(r.run.result.message),
           r.run.result.message,
           csv_number(r.error.rms),
@@ -109,6 +109,7 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
       else
         for (double dt = cfg.dt_max; dt >= cfg.dt_min * (1 - 1e-12); dt *= 0.5) rungs.push_back(dt);
       double prev_cpu = kNaN, last_cpu = kNaN;
+      long step_cap = cfg.pilot_steps;
       for (size_t k = 0; k < rungs.size(); ++k) {
         if (std::isfinite(last_cpu)) {
           const double growth = std::isfinite(prev_cpu) && prev_cpu > 0 ? std::max(1.5, last_cpu / prev_cpu) : 2.0;
@@ -140,20 +141,45 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
         }
         RecordOptions rec;
         rec.progress = cfg.progress;
+        rec.speed_bound = cfg.speed_bound;
         rec.label = model + " " + integ;
+        opt.max_steps = step_cap;
         row.run = run_recorded(cfg.scene, model, integ, opt, rec);
+        if (row.run.result.outcome == Outcome::max_steps) {
+          const double frac = row.run.end_time / cfg.scene.duration_s;
+          const double predicted = frac > 0 ? row.run.cpu_s / frac : std::numeric_limits<double>::infinity();
+          if (predicted > cfg.run_budget_cpu_s) {
+            row.over_budget = true;
+            row.predicted_cpu_s = predicted;
+            row.run.result.message = "stopped at the pilot limit of " + std::to_string(step_cap) + " steps at t = " +
+                                     csv_number(row.run.end_time) + " s; predicted " + csv_number(predicted) +
+                                     " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s";
+          } else {
+            if (cfg.progress)
+              std::fprintf(stderr, "    (%ld-step pilot reached t = %g s; rerunning without the limit)\n", step_cap,
+                           row.run.end_time);
+            opt.max_steps = IntegratorOptions{}.max_steps;
+            row.run = run_recorded(cfg.scene, model, integ, opt, rec);
+          }
+        }
         row.error = {kNaN, kNaN};
         if (row.run.result.outcome == Outcome::ok) row.error = trajectory_error(row.run.trajectory, ref.trajectory);
         if (cfg.progress)
           std::fprintf(stderr, "  %-4s %-12s %s %-8s %-14s err rms %.3g m, max %.3g m, %.2f s CPU, %ld steps\n",
                        model.c_str(), integ.c_str(), adaptive ? "rtol" : "dt  ", csv_number(rungs[k]).c_str(),
-                       to_string(row.run.result.outcome), row.error.rms, row.error.max, row.run.cpu_s,
+                       row.outcome().c_str(), row.error.rms, row.error.max, row.run.cpu_s,
                        row.run.stats.steps);
         csv.row(csv_row(row));
         const Outcome o = row.run.result.outcome;
+        const bool over = row.over_budget;
+        step_cap = std::max(cfg.pilot_steps, 4 * row.run.stats.steps);
         res.rows.push_back(std::move(row));
         if (o == Outcome::not_offered) {
           res.notes.push_back(model + " " + integ + ": not offered: " + res.rows.back().run.result.message);
+          break;
+        }
+        if (over) {
+          res.notes.push_back(model + " " + integ + ": ladder stopped: " + res.rows.back().run.result.message);
           break;
         }
         prev_cpu = last_cpu;
@@ -180,6 +206,8 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
   p.set("dt_max_s", cfg.dt_max);
   p.set("dt_min_s", cfg.dt_min);
   p.set("run_budget_cpu_s", cfg.run_budget_cpu_s);
+  p.set("pilot_steps", cfg.pilot_steps);
+  p.set("speed_bound_m_per_s", cfg.speed_bound);
   p.set("error", "RMS and max over nodes and output times t_k = k*output_interval_s (k >= 1) of the node position "
                  "difference to the reference [m]");
   p.set("cpu_time", "process CPU time (all threads) of initialize + advance_to, frame extraction excluded");
