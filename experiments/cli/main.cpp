@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
 
   ExperimentArgs wp_args;
   std::string wp_rtols, wp_ref_rtols, ref_dir = "results/reference";
-  double wp_dt_max = 4e-3, wp_dt_min = 4e-3 / 1024, wp_budget = 60.0;
+  double wp_dt_max = 4e-3, wp_dt_min = 4e-3 / 256, wp_budget = 30.0;
   auto* wp = app.add_subcommand("work-precision",
                                 "Error against CPU time: per model and integrator a ladder of tolerances (adaptive) or "
                                 "step sizes (fixed-step), error against a cached IDA reference; CSV + JSON");

@@ -28,7 +28,7 @@ struct WorkPrecisionConfig {
   double atol_per_rtol = 1e-3;
   double adaptive_initial_dt = 1e-5;
   // Fixed-step methods: dt = dt_max / 2^k while dt ≥ dt_min.
-  double dt_max = 4e-3, dt_min = 4e-3 / 1024;
+  double dt_max = 4e-3, dt_min = 4e-3 / 256;
   // A ladder stops when its next rung is predicted to exceed this CPU time
   // (last rung's CPU × the growth between the last two rungs, at least 1.5).
   // A run is first tried with a step limit (pilot_steps for a ladder's first
@@ -36,7 +36,7 @@ struct WorkPrecisionConfig {
   // hits the limit, its CPU time to the end is extrapolated from the time
   // reached: beyond the budget it is recorded as "over_budget" and the ladder
   // stops, else it is rerun without the limit.
-  double run_budget_cpu_s = 60.0;
+  double run_budget_cpu_s = 30.0;
   long pilot_steps = 1000;
   // A run whose max node speed exceeds this is "diverged" (no error is
   // computed for it): physical speeds in the hanging-cloth scenes stay below
