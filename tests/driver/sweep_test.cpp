@@ -291,6 +291,16 @@ TEST(WorkPrecisionSweep, TinySceneTwoIntegratorsEndToEnd) {
   for (const char* key : {"\"git_revision\"", "\"machine\"", "\"text\"", "\"references\"", "\"rtols\""})
     EXPECT_NE(json.find(key), std::string::npos) << key;
   EXPECT_NE(json.find(r.references.at("fem").hash), std::string::npos);
+
+  // The chart script reads these files.
+  ASSERT_TRUE(test::python_with("numpy, matplotlib"));
+  const std::string script = std::string(WEAVELAB_SOURCE_DIR) + "/experiments/plot_work_precision.py";
+  const auto out = test::run_command(std::string(test::python()) + " " + test::shell_quote(script) + " " +
+                                     test::shell_quote(c.out_dir.string()));
+  ASSERT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_TRUE(std::filesystem::exists(c.out_dir / "work_precision.png"));
+  EXPECT_TRUE(std::filesystem::exists(c.out_dir / "work_precision.svg"));
+  EXPECT_NE(test::read_text(c.out_dir / "slopes.csv").find("fem,be-linear,fixed,3,"), std::string::npos);
 }
 
 TEST(StabilitySweep, TinySceneExplicitLimitBelowImplicit) {
@@ -322,6 +332,14 @@ TEST(StabilitySweep, TinySceneExplicitLimitBelowImplicit) {
   const std::string json = test::read_text(c.out_dir / "stability.json");
   EXPECT_NE(json.find("\"git_revision\""), std::string::npos);
   EXPECT_NE(json.find("\"speed_bound_m_per_s\""), std::string::npos);
+
+  ASSERT_TRUE(test::python_with("numpy, matplotlib"));
+  const std::string script = std::string(WEAVELAB_SOURCE_DIR) + "/experiments/plot_stability.py";
+  const auto out = test::run_command(std::string(test::python()) + " " + test::shell_quote(script) + " " +
+                                     test::shell_quote(c.out_dir.string()));
+  ASSERT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_TRUE(std::filesystem::exists(c.out_dir / "stability.png"));
+  EXPECT_TRUE(std::filesystem::exists(c.out_dir / "stability.svg"));
 }
 
 }  // namespace
