@@ -1,4 +1,5 @@
-// weavelab command line: `weavelab run SCENE`, `weavelab info SCENE`.
+// weavelab command line: `weavelab run SCENE`, `weavelab info SCENE`,
+// `weavelab work-precision SCENE`, `weavelab stability SCENE`.
 // Exit codes: 0 success, 1 numerical failure (outcome in the summary),
 // 2 bad scene or bad arguments, 3 output could not be written.
 #include <CLI/CLI.hpp>
@@ -7,6 +8,9 @@
 
 #include "experiments/driver/model_factory.h"
 #include "experiments/driver/run.h"
+#include "experiments/driver/stability.h"
+#include "experiments/driver/sweep.h"
+#include "experiments/driver/work_precision.h"
 #include "integrators/integrator.h"
 #include "models/scene/scene.h"
 
@@ -16,6 +20,73 @@ std::string joined(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
   return s;
+}
+
+// "a,b,c" → {"a", "b", "c"} (empty items dropped).
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::string item;
+  for (char c : text + ",") {
+    if (c == ',') {
+      if (!item.empty()) out.push_back(item);
+      item.clear();
+    } else if (c != ' ') {
+      item += c;
+    }
+  }
+  return out;
+}
+
+std::vector<double> split_numbers(const std::string& text, const std::string& option) {
+  std::vector<double> out;
+  for (const auto& s : split_list(text)) {
+    size_t used = 0;
+    double x = 0;
+    try {
+      x = std::stod(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != s.size() || !(x > 0))
+      throw std::invalid_argument(option + ": got '" + s + "', expected a comma-separated list of numbers > 0");
+    out.push_back(x);
+  }
+  if (out.empty()) throw std::invalid_argument(option + ": empty list");
+  return out;
+}
+
+// Options shared by the two experiments.
+struct ExperimentArgs {
+  std::string scene, models = "yarn,fem", integrators, out;
+  double duration = 0;
+  bool quiet = false;
+};
+
+void add_experiment_options(CLI::App* cmd, ExperimentArgs& a, const std::string& default_out) {
+  cmd->add_option("scene", a.scene, "Scene file (TOML)")->required();
+  cmd->add_option("--models", a.models, "Comma-separated models: " + joined(wl::model_names()))->capture_default_str();
+  cmd->add_option("--integrators", a.integrators, "Comma-separated integrators (default: all that apply): " +
+                                                      joined(wl::integrator_names()));
+  cmd->add_option("--duration", a.duration, "Simulated time [s] (overrides the scene)");
+  cmd->add_option("--out", a.out, "Output folder (default " + default_out + ")");
+  cmd->add_flag("--quiet", a.quiet, "No progress on stderr");
+}
+
+// Loads the scene and applies --duration; fills path, text, scene and overrides.
+template <class Config>
+void load_experiment_scene(const ExperimentArgs& a, CLI::App* cmd, Config& c) {
+  c.scene_path = a.scene;
+  c.scene = wl::load_scene(a.scene);  // a missing or bad file is a SceneError (exit 2)
+  c.scene_text = wl::read_text_file(a.scene);
+  if (cmd->count("--duration")) {
+    if (!(a.duration > 0)) throw std::invalid_argument("--duration must be > 0, got " + std::to_string(a.duration));
+    c.scene.duration_s = a.duration;
+    c.overrides["duration_s"] = std::to_string(a.duration);
+  }
+  c.models = split_list(a.models);
+  if (c.models.empty()) throw std::invalid_argument("--models: empty list");
+  c.integrators = split_list(a.integrators);
+  c.progress = !a.quiet;
 }
 
 }  // namespace
@@ -41,6 +112,35 @@ int main(int argc, char** argv) {
   info->add_option("scene", info_scene, "Scene file (TOML)")->required();
   info->add_option("--model", info_model, "Model: " + joined(wl::model_names()))->capture_default_str();
 
+  ExperimentArgs wp_args;
+  std::string wp_rtols, wp_ref_rtols, ref_dir = "results/reference";
+  double wp_dt_max = 4e-3, wp_dt_min = 4e-3 / 256, wp_budget = 30.0;
+  auto* wp = app.add_subcommand("work-precision",
+                                "Error against CPU time: per model and integrator a ladder of tolerances (adaptive) or "
+                                "step sizes (fixed-step), error against a cached IDA reference; CSV + JSON");
+  add_experiment_options(wp, wp_args, "results/work_precision");
+  wp->add_option("--rtols", wp_rtols, "Tolerance ladder of the adaptive methods (default 1e-3,1e-4,...,1e-8)");
+  wp->add_option("--dt-max", wp_dt_max, "Largest fixed step [s]; the ladder halves it")->capture_default_str();
+  wp->add_option("--dt-min", wp_dt_min, "Smallest fixed step [s]")->capture_default_str();
+  wp->add_option("--budget", wp_budget, "CPU seconds a single run may be predicted to take before a ladder stops")
+      ->capture_default_str();
+  wp->add_option("--reference-rtols", wp_ref_rtols, "Reference tolerances, tried in order (default 1e-10,1e-9,1e-8)");
+  wp->add_option("--reference-dir", ref_dir, "Reference cache folder")->capture_default_str();
+
+  ExperimentArgs st_args;
+  std::string st_mults = "1,10,100,1000";
+  double st_dt_min = 1e-6, st_dt_max = 1e-2, st_bound = 10.0;
+  int st_bisections = 8;
+  auto* st = app.add_subcommand("stability",
+                                "Largest bounded fixed step per integrator x model x stretch-modulus multiplier "
+                                "(bisection on log dt) and the failure mode above it; CSV + JSON");
+  add_experiment_options(st, st_args, "results/stability");
+  st->add_option("--multipliers", st_mults, "Stretch-modulus multipliers")->capture_default_str();
+  st->add_option("--dt-min", st_dt_min, "Smallest step probed [s]")->capture_default_str();
+  st->add_option("--dt-max", st_dt_max, "Largest step probed [s]")->capture_default_str();
+  st->add_option("--bisections", st_bisections, "Bisections on log dt")->capture_default_str();
+  st->add_option("--speed-bound", st_bound, "Max node speed of a bounded run [m/s]")->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -54,6 +154,41 @@ int main(int argc, char** argv) {
       auto m = wl::make_model(scene, info_model);
       std::cout << "scene: " << info_scene << "\n";
       for (const auto& [k, v] : m->describe()) std::cout << k << ": " << v << "\n";
+      return 0;
+    }
+    if (*wp) {
+      wl::WorkPrecisionConfig c;
+      load_experiment_scene(wp_args, wp, c);
+      if (c.integrators.empty()) c.integrators = wl::integrator_names();
+      if (!wp_rtols.empty()) c.rtols = split_numbers(wp_rtols, "--rtols");
+      if (!wp_ref_rtols.empty()) c.reference.rtols = split_numbers(wp_ref_rtols, "--reference-rtols");
+      if (!(wp_dt_max > 0) || !(wp_dt_min > 0) || wp_dt_min > wp_dt_max)
+        throw std::invalid_argument("--dt-min/--dt-max: need 0 < dt-min <= dt-max");
+      if (!(wp_budget > 0)) throw std::invalid_argument("--budget must be > 0");
+      c.dt_max = wp_dt_max;
+      c.dt_min = wp_dt_min;
+      c.run_budget_cpu_s = wp_budget;
+      c.reference.cache_dir = ref_dir;
+      c.reference.progress = c.progress;
+      c.out_dir = wp_args.out.empty() ? std::filesystem::path("results/work_precision") : std::filesystem::path(wp_args.out);
+      const auto r = wl::run_work_precision(c);
+      std::cerr << "weavelab: work-precision: " << r.rows.size() << " runs in " << r.wall_s << " s; results in "
+                << c.out_dir.string() << "\n";
+      return 0;
+    }
+    if (*st) {
+      wl::StabilityConfig c;
+      load_experiment_scene(st_args, st, c);
+      c.multipliers = split_numbers(st_mults, "--multipliers");
+      c.dt_min = st_dt_min;
+      c.dt_max = st_dt_max;
+      c.bisections = st_bisections;
+      if (!(st_bound > 0)) throw std::invalid_argument("--speed-bound must be > 0");
+      c.speed_bound = st_bound;
+      c.out_dir = st_args.out.empty() ? std::filesystem::path("results/stability") : std::filesystem::path(st_args.out);
+      const auto r = wl::run_stability(c);
+      std::cerr << "weavelab: stability: " << r.rows.size() << " cells in " << r.wall_s << " s; results in "
+                << c.out_dir.string() << "\n";
       return 0;
     }
     wl::Scene scene = wl::load_scene(scene_path);

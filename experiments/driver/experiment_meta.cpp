@@ -1,0 +1,53 @@
+#include "experiments/driver/experiment_meta.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
+
+namespace wl {
+
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return stamp;
+}
+
+Json statistics_json(const IntegratorStats& st) {
+  Json s = Json::object();
+  s.set("steps", st.steps);
+  s.set("rejected_steps", st.rejected_steps);
+  s.set("rhs_evals", st.rhs_evals);
+  s.set("jac_evals", st.jac_evals);
+  s.set("linear_setups", st.linear_setups);
+  s.set("linear_solves", st.linear_solves);
+  s.set("nonlinear_iters", st.nonlinear_iters);
+  s.set("wall_s", st.wall_s);
+  s.set("cpu_s", st.cpu_s);
+  return s;
+}
+
+Json scene_json(const std::filesystem::path& path, const std::string& text, const Scene& scene,
+                const std::map<std::string, std::string>& overrides) {
+  Json s = Json::object();
+  s.set("file", path.string());
+  s.set("name", path.stem().string());
+  s.set("overrides", Json(overrides));
+  s.set("warps", scene.warps);
+  s.set("wefts", scene.wefts);
+  s.set("duration_s", scene.duration_s);
+  s.set("output_interval_s", scene.output_interval_s);
+  s.set("text", text);
+  return s;
+}
+
+void add_provenance(Json& j) {
+  j.set("git_revision", git_revision());
+  j.set("machine", Json(machine_info()));
+  const char* omp = std::getenv("OMP_NUM_THREADS");
+  Json env = Json::object();
+  env.set("OMP_NUM_THREADS", omp ? Json(std::string(omp)) : Json());
+  j.set("environment", env);
+}
+
+}  // namespace wl

@@ -1,0 +1,23 @@
+// Shared pieces of the experiment metadata JSON (work-precision, stability):
+// the scene block, the integrator statistics, a UTC time stamp, and the
+// provenance (git revision, machine, OpenMP threads).
+#pragma once
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "experiments/output/json_writer.h"
+#include "integrators/integrator.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+std::string utc_now();  // "2026-01-31T12:00:00Z"
+Json statistics_json(const IntegratorStats& stats);
+// file, name, text, overrides, duration_s, output_interval_s, nodes (warps × wefts)
+Json scene_json(const std::filesystem::path& path, const std::string& text, const Scene& scene,
+                const std::map<std::string, std::string>& overrides);
+// Sets git_revision, machine and environment (OMP_NUM_THREADS) on an object.
+void add_provenance(Json& j);
+
+}  // namespace wl
