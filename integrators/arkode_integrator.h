@@ -46,10 +46,6 @@ class ArkodeIntegrator : public Integrator {
   std::string name() const override;
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
-  double t() const override { return t_; }
-  const Vec& q() const override { return q_; }
-  const Vec& v() const override { return v_; }
-  const IntegratorStats& stats() const override { return stats_; }
 
  private:
   static int rhs_full(double t, N_Vector y, N_Vector ydot, void* self);
@@ -64,10 +60,7 @@ class ArkodeIntegrator : public Integrator {
   void update_stats();
 
   Variant variant_;
-  Model* model_ = nullptr;
-  IntegratorOptions opt_;
-  double t_ = 0.0;
-  Vec q_, v_, qtmp_, vtmp_, acc_;
+  Vec qtmp_, vtmp_, acc_;
   int n_ = 0;
   std::vector<int> fixed_;
   Evaluation ev_, mev_;
@@ -79,7 +72,7 @@ class ArkodeIntegrator : public Integrator {
   long own_setups_ = 0, own_solves_ = 0, last_nni_ = 0;
   long attempts_setup_ = -1;
   double t_setup_ = 0.0;  // ARKODE's step attempts at the last Newton-matrix setup
-  IntegratorStats stats_, own_;
+  IntegratorStats own_;  // wall/CPU time accumulated here
   std::string last_error_;
   // SUNDIALS objects: context first, memory last (destroyed first).
   sun::Context ctx_;

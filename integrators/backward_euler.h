@@ -20,10 +20,6 @@ class BackwardEuler : public Integrator {
   std::string name() const override { return variant_ == Variant::linear ? "be-linear" : "be-newton"; }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
-  double t() const override { return t_; }
-  const Vec& q() const override { return q_; }
-  const Vec& v() const override { return v_; }
-  const IntegratorStats& stats() const override { return stats_; }
 
   // One step of size h from the current state (exposed for benchmarks).
   StepResult step(double h);
@@ -37,15 +33,10 @@ class BackwardEuler : public Integrator {
   void form_step_matrix(double h);  // a_ = M − h D − h² K from ev_
 
   Variant variant_;
-  Model* model_ = nullptr;
-  IntegratorOptions opt_;
-  double t_ = 0.0;
-  Vec q_, v_;
   Evaluation ev_;
   SparseMatrix a_;
   std::unique_ptr<SparseSolver> solver_;
   std::vector<int> fixed_;
-  IntegratorStats stats_;
 };
 
 }  // namespace wl

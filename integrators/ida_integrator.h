@@ -36,10 +36,6 @@ class IdaIntegrator : public Integrator {
   std::string name() const override { return "ida"; }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
-  double t() const override { return t_; }
-  const Vec& q() const override { return q_; }
-  const Vec& v() const override { return v_; }
-  const IntegratorStats& stats() const override { return stats_; }
 
  private:
   static int residual(double t, N_Vector y, N_Vector yp, N_Vector r, void* self);
@@ -47,17 +43,12 @@ class IdaIntegrator : public Integrator {
   StepResult failure(int flag);
   void update_stats();
 
-  Model* model_ = nullptr;
-  IntegratorOptions opt_;
-  double t_ = 0.0;
-  Vec q_, v_;
   int n_ = 0;
   std::vector<int> fixed_;
   Evaluation ev_;
   SparseMatrix mass_;  // constant mass (when !mass_depends_on_q)
   double cj_setup_ = 1.0;  // c_j of the last Newton-matrix setup
   long ncf_setup_ = 0;     // IDA's Newton convergence failures at that setup
-  IntegratorStats stats_;
   IntegratorStats own_;  // wall/CPU time accumulated here
   std::string last_error_;
   long last_nni_ = 0;

@@ -61,11 +61,22 @@ class Integrator {
   virtual void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) = 0;
   // Advances to exactly t_out (stepping or interpolating as the method does).
   virtual StepResult advance_to(double t_out) = 0;
-  virtual double t() const = 0;
-  virtual const Vec& q() const = 0;
-  virtual const Vec& v() const = 0;
-  virtual const IntegratorStats& stats() const = 0;
+  double t() const { return t_; }
+  const Vec& q() const { return q_; }
+  const Vec& v() const { return v_; }
+  const IntegratorStats& stats() const { return stats_; }
   std::function<void(const StepRecord&)> on_step;  // called after each accepted step
+
+ protected:
+  // Fixed steps of opt_.dt from t_ to exactly t_out (the last one shortened),
+  // honouring opt_.max_steps; `step(h)` advances t_, q_, v_ by one step.
+  StepResult advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step);
+
+  Model* model_ = nullptr;
+  IntegratorOptions opt_;
+  double t_ = 0.0;
+  Vec q_, v_;
+  IntegratorStats stats_;
 };
 
 // Names accepted by make_integrator, in documentation order.

@@ -30,6 +30,18 @@ StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt)
   return {};
 }
 
+StepResult Integrator::advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step) {
+  while (t_out - t_ > 1e-9 * opt_.dt) {
+    if (stats_.steps >= opt_.max_steps) return {Outcome::max_steps, "step limit reached"};
+    double h = std::min(opt_.dt, t_out - t_);
+    if (t_out - t_ - h < 1e-9 * opt_.dt) h = t_out - t_;
+    StepResult r = step(h);
+    if (r.outcome != Outcome::ok) return r;
+  }
+  t_ = t_out;
+  return {};
+}
+
 std::vector<std::string> integrator_names() {
   return {"be-linear", "be-newton", "ida", "arkode-erk", "arkode-dirk", "arkode-imex", "symplectic"};
 }

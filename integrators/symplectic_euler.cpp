@@ -43,15 +43,7 @@ StepResult SymplecticEuler::step(double h) {
 }
 
 StepResult SymplecticEuler::advance_to(double t_out) {
-  while (t_out - t_ > 1e-9 * opt_.dt) {
-    if (stats_.steps >= opt_.max_steps) return {Outcome::max_steps, "step limit reached"};
-    double h = std::min(opt_.dt, t_out - t_);
-    if (t_out - t_ - h < 1e-9 * opt_.dt) h = t_out - t_;
-    StepResult r = step(h);
-    if (r.outcome != Outcome::ok) return r;
-  }
-  t_ = t_out;
-  return {};
+  return advance_fixed_steps(t_out, [this](double h) { return step(h); });
 }
 
 }  // namespace wl

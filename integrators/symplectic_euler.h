@@ -17,22 +17,14 @@ class SymplecticEuler : public Integrator {
   std::string name() const override { return "symplectic"; }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
-  double t() const override { return t_; }
-  const Vec& q() const override { return q_; }
-  const Vec& v() const override { return v_; }
-  const IntegratorStats& stats() const override { return stats_; }
   StepResult step(double h);
 
  private:
-  Model* model_ = nullptr;
-  IntegratorOptions opt_;
-  double t_ = 0.0;
-  Vec q_, v_, a_;
+  Vec a_;
   Evaluation ev_;
   std::unique_ptr<SparseSolver> solver_;
   bool factorized_ = false;
   std::vector<int> fixed_;
-  IntegratorStats stats_;
 };
 
 }  // namespace wl
