@@ -10,7 +10,7 @@
 // process CPU time (the CPU time is steadier on a shared machine).
 #include "experiments/bench/compare_models.h"
 
-#include <time.h>
+#include "experiments/bench/step_timing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -29,84 +29,6 @@
 
 namespace wl::bench {
 namespace {
-
-double process_cpu_s() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// Wall and process-CPU durations of repeated timed sections.
-struct Timing {
-  std::vector<double> wall, cpu;
-  template <class F>
-  void time(F&& f) {
-    const auto w0 = std::chrono::steady_clock::now();
-    const double c0 = process_cpu_s();
-    f();
-    cpu.push_back(process_cpu_s() - c0);
-    wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
-  }
-  double wall_ms() const { return 1e3 * median(wall); }
-  double cpu_ms() const { return 1e3 * median(cpu); }
-};
-
-struct Figures {
-  std::string model;
-  int dofs = 0;
-  long nnz = 0;
-  int steps = 0;
-  bool parts = false;  // factor+solve and assembly measured
-  Timing step, factor_solve, assembly;
-};
-
-Figures measure(const Scene& scene, const std::string& model_name, int warmup, int steps, bool parts) {
-  Figures fig;
-  fig.model = model_name;
-  fig.parts = parts;
-  auto model = make_model(scene, model_name);
-  BackwardEuler be(BackwardEuler::Variant::linear);
-  IntegratorOptions opt;
-  opt.dt = scene.dt_s;
-  be.initialize(*model, 0.0, model->initial_q(), model->initial_v(), opt);
-  fig.dofs = model->num_dofs();
-  fig.nnz = static_cast<long>(model->pattern().nonZeros());
-  auto checked_step = [&]() {
-    const StepResult r = be.step(opt.dt);
-    if (r.outcome != Outcome::ok)
-      throw std::runtime_error(model_name + " step at t = " + std::to_string(be.t()) + " s failed (" +
-                               to_string(r.outcome) + "): " + r.message);
-  };
-  for (int k = 0; k < warmup; ++k) checked_step();
-
-  SparseSolver solver(model->pattern(), model->fixed_dofs());
-  const Vec b = Vec::Ones(fig.dofs);
-  Vec x;
-  Evaluation ev;
-  allocate_evaluation(*model, ev);
-  if (parts && warmup > 0) {  // symbolic analysis (and a first numeric factorization), untimed
-    solver.factorize(be.step_matrix());
-    solver.solve(b, x);
-  }
-  for (int k = 0; k < steps; ++k) {
-    fig.step.time(checked_step);
-    if (!parts) continue;
-    fig.factor_solve.time([&] {
-      if (!solver.factorize(be.step_matrix())) throw std::runtime_error(model_name + ": singular step matrix");
-      solver.solve(b, x);
-    });
-    fig.assembly.time([&] { model->evaluate(be.t(), be.q(), be.v(), kForce | kDfdq | kDfdv | kMass, ev); });
-  }
-  fig.steps = steps;
-  return fig;
-}
 
 std::string load_average() {
   std::ifstream in("/proc/loadavg");
@@ -173,8 +95,8 @@ int compare_models_main(int argc, char** argv) {
 
   std::vector<Figures> rows;
   try {
-    rows.push_back(measure(scene, "fem", 3, fem_steps, true));
-    rows.push_back(measure(scene, "yarn", 1, yarn_steps, false));
+    rows.push_back(measure(scene, "fem", "be-linear", 3, fem_steps, true));
+    rows.push_back(measure(scene, "yarn", "be-linear", 1, yarn_steps, false));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "weavelab_bench --compare-models: %s: %s\n", scene_path.c_str(), e.what());
     return 1;

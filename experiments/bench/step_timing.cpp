@@ -1,0 +1,81 @@
+#include "experiments/bench/step_timing.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "experiments/driver/model_factory.h"
+#include "integrators/backward_euler.h"
+#include "integrators/sparse_solver.h"
+
+namespace wl::bench {
+
+double process_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+}  // namespace
+
+double Timing::wall_ms() const { return 1e3 * median(wall); }
+double Timing::cpu_ms() const { return 1e3 * median(cpu); }
+double Timing::mean_wall_ms() const {
+  double s = 0.0;
+  for (double w : wall) s += w;
+  return wall.empty() ? 0.0 : 1e3 * s / wall.size();
+}
+
+Figures measure(const Scene& scene, const std::string& model_name, const std::string& integrator, int warmup,
+                int steps, bool parts) {
+  Figures fig;
+  fig.model = model_name;
+  fig.parts = parts;
+  auto model = make_model(scene, model_name);
+  BackwardEuler be(integrator == "be-newton" ? BackwardEuler::Variant::newton : BackwardEuler::Variant::linear);
+  IntegratorOptions opt;
+  opt.dt = scene.dt_s;
+  be.initialize(*model, 0.0, model->initial_q(), model->initial_v(), opt);
+  fig.dofs = model->num_dofs();
+  fig.nnz = static_cast<long>(model->pattern().nonZeros());
+  auto checked_step = [&]() {
+    const StepResult r = be.step(opt.dt);
+    if (r.outcome != Outcome::ok)
+      throw std::runtime_error(model_name + " step at t = " + std::to_string(be.t()) + " s failed (" +
+                               to_string(r.outcome) + "): " + r.message);
+  };
+  for (int k = 0; k < warmup; ++k) checked_step();
+
+  SparseSolver solver(model->pattern(), model->fixed_dofs());
+  const Vec b = Vec::Ones(fig.dofs);
+  Vec x;
+  Evaluation ev;
+  allocate_evaluation(*model, ev);
+  if (parts && warmup > 0) {  // symbolic analysis (and a first numeric factorization), untimed
+    solver.factorize(be.step_matrix());
+    solver.solve(b, x);
+  }
+  for (int k = 0; k < steps; ++k) {
+    fig.step.time(checked_step);
+    if (!parts) continue;
+    fig.factor_solve.time([&] {
+      if (!solver.factorize(be.step_matrix())) throw std::runtime_error(model_name + ": singular step matrix");
+      solver.solve(b, x);
+    });
+    fig.assembly.time([&] { model->evaluate(be.t(), be.q(), be.v(), kForce | kDfdq | kDfdv | kMass, ev); });
+  }
+  fig.steps = steps;
+  return fig;
+}
+
+}  // namespace wl::bench
