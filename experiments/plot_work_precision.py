@@ -113,10 +113,14 @@ def main():
             label = f"{integ} ({'rtol' if adaptive else 'dt'} ladder, slope {s_cpu:.2f})" if len(ok) > 1 else integ
             ax.loglog(cpu, err, marker=marker, color=colour, label=label, linewidth=1.6, markersize=6)
             # Label the loosest and the tightest rung.
-            for i in {0, len(ok) - 1}:
-                tag = f"{param[i]:.0e}" if adaptive else f"{param[i] * 1e3:g} ms"
-                ax.annotate(tag, (cpu[i], err[i]), textcoords="offset points", xytext=(5, 4), fontsize=7,
-                            color=colour)
+            for i in sorted({0, len(ok) - 1}):
+                if adaptive:
+                    tag = f"{param[i]:.0e}"
+                else:
+                    tag = f"{param[i] * 1e3:.3g} ms" if param[i] >= 1e-3 else f"{param[i] * 1e6:.3g} µs"
+                below = i > 0 and not adaptive  # the fine end of a dt ladder: label below the point
+                ax.annotate(tag, (cpu[i], err[i]), textcoords="offset points", xytext=(5, -11 if below else 4),
+                            fontsize=7, color=colour)
             if failed:
                 missing.append(f"{integ}: {len(failed)} rung(s) {', '.join(sorted({r['outcome'] for r in failed}))}")
         ref = meta.get("references", {}).get(model, {})

@@ -143,24 +143,33 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
         rec.progress = cfg.progress;
         rec.speed_bound = cfg.speed_bound;
         rec.label = model + " " + integ;
-        opt.max_steps = step_cap;
-        row.run = run_recorded(cfg.scene, model, integ, opt, rec);
-        if (row.run.result.outcome == Outcome::max_steps) {
+        // Pilots with growing step limits (see WorkPrecisionConfig::run_budget_cpu_s).
+        long cap = step_cap;
+        for (;;) {
+          opt.max_steps = cap;
+          row.run = run_recorded(cfg.scene, model, integ, opt, rec);
+          if (row.run.result.outcome != Outcome::max_steps) break;
           const double frac = row.run.end_time / cfg.scene.duration_s;
           const double predicted = frac > 0 ? row.run.cpu_s / frac : std::numeric_limits<double>::infinity();
-          if (predicted > cfg.run_budget_cpu_s) {
-            row.over_budget = true;
-            row.predicted_cpu_s = predicted;
-            row.run.result.message = "stopped at the pilot limit of " + std::to_string(step_cap) + " steps at t = " +
-                                     csv_number(row.run.end_time) + " s; predicted " + csv_number(predicted) +
-                                     " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s";
-          } else {
+          if (predicted <= cfg.run_budget_cpu_s) {
             if (cfg.progress)
-              std::fprintf(stderr, "    (%ld-step pilot reached t = %g s; rerunning without the limit)\n", step_cap,
+              std::fprintf(stderr, "    (%ld-step pilot reached t = %g s; rerunning without the limit)\n", cap,
                            row.run.end_time);
             opt.max_steps = IntegratorOptions{}.max_steps;
             row.run = run_recorded(cfg.scene, model, integ, opt, rec);
+            break;
           }
+          const double per_step = row.run.cpu_s / std::max(1L, row.run.stats.steps);
+          if (per_step * 10.0 * cap > cfg.run_budget_cpu_s) {
+            row.over_budget = true;
+            row.predicted_cpu_s = predicted;
+            row.run.result.message = "stopped at a pilot limit of " + std::to_string(cap) + " steps at t = " +
+                                     csv_number(row.run.end_time) + " s after " + csv_number(row.run.cpu_s) +
+                                     " s CPU; the full run extrapolates to " + csv_number(predicted) +
+                                     " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s";
+            break;
+          }
+          cap *= 10;
         }
         row.error = {kNaN, kNaN};
         if (row.run.result.outcome == Outcome::ok) row.error = trajectory_error(row.run.trajectory, ref.trajectory);

@@ -32,12 +32,15 @@ struct WorkPrecisionConfig {
   // A ladder stops when its next rung is predicted to exceed this CPU time
   // (last rung's CPU × the growth between the last two rungs, at least 1.5).
   // A run is first tried with a step limit (pilot_steps for a ladder's first
-  // rung, then 4 × the previous rung's steps, at least pilot_steps); when it
+  // rung, then 4 × the previous rung's steps, at least pilot_steps). When it
   // hits the limit, its CPU time to the end is extrapolated from the time
-  // reached: beyond the budget it is recorded as "over_budget" and the ladder
-  // stops, else it is rerun without the limit.
+  // reached: within the budget it is rerun without a limit; otherwise the
+  // limit grows ×10 while such a pilot is predicted (CPU per step × steps) to
+  // stay within the budget, else the run is recorded as "over_budget" and the
+  // ladder stops. Fixed-step ladders also stop when the next rung is predicted
+  // to exceed the budget (last rung's CPU × the growth between the last two).
   double run_budget_cpu_s = 30.0;
-  long pilot_steps = 1000;
+  long pilot_steps = 20;
   // A run whose max node speed exceeds this is "diverged" (no error is
   // computed for it): physical speeds in the hanging-cloth scenes stay below
   // 1 m/s, an unstable fixed-step run passes this within a few steps [m/s].
