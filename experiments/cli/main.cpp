@@ -96,8 +96,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   std::string scene_path, model = "yarn", integrator, out_dir;
-  double dt = 0, duration = 0;
-  bool quiet = false;
+  double dt = 0, duration = 0, rtol = 0;
+  bool quiet = false, adaptive = false;
   auto* run = app.add_subcommand("run", "Simulate a scene and write frames (VTU/PVD), metrics.csv and summary.json");
   run->add_option("scene", scene_path, "Scene file (TOML)")->required();
   run->add_option("--model", model, "Model: " + joined(wl::model_names()))->capture_default_str();
@@ -105,6 +105,8 @@ int main(int argc, char** argv) {
   run->add_option("--dt", dt, "Time step [s] (overrides the scene)");
   run->add_option("--duration", duration, "Simulated time [s] (overrides the scene)");
   run->add_option("--out", out_dir, "Output folder (default results/<scene name>/<model>)");
+  run->add_flag("--adaptive", adaptive, "Adaptive steps with error control (overrides the scene; --dt is the first step)");
+  run->add_option("--rtol", rtol, "Relative tolerance of adaptive steps (implies --adaptive; atol = 1e-3 rtol m)");
   run->add_flag("--quiet", quiet, "No progress on stderr");
 
   std::string info_scene, info_model = "yarn";
@@ -206,6 +208,17 @@ int main(int argc, char** argv) {
     if (duration > 0) {
       scene.duration_s = duration;
       opt.overrides["duration_s"] = std::to_string(duration);
+    }
+    if (run->count("--rtol")) {
+      if (!(rtol > 0 && rtol < 1)) throw std::invalid_argument("--rtol must be in (0, 1), got " + std::to_string(rtol));
+      adaptive = true;
+      scene.rtol = rtol;
+      scene.atol = 1e-3 * rtol;
+      opt.overrides["rtol"] = std::to_string(rtol);
+    }
+    if (adaptive) {
+      scene.adaptive = true;
+      opt.overrides["adaptive"] = "true";
     }
     if (run->count("--dt") && dt <= 0) throw std::invalid_argument("--dt must be > 0, got " + std::to_string(dt));
     if (run->count("--duration") && duration <= 0)
