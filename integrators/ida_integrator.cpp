@@ -164,18 +164,11 @@ StepResult IdaIntegrator::advance_to(double t_out) {
         result = failure(flag);
         break;
       }
-      Eigen::Map<const Vec> y(sun::data(y_.get()), 2 * n_);
-      const double h = tret - t_;
-      t_ = tret;
-      q_ = y.head(n_);
-      v_ = y.tail(n_);
-      result = check_state(q_, v_, opt_);
-      if (result.outcome != Outcome::ok) break;
-      model_->accept_step(t_, q_, v_, h);
       long nni = 0;
       IDAGetNumNonlinSolvIters(mem_.get(), &nni);
-      if (on_step) on_step({t_, h, static_cast<int>(nni - last_nni_), clock.elapsed_wall() - wall0});
+      result = accept_step_state(tret, sun::data(y_.get()), nni - last_nni_, clock.elapsed_wall() - wall0);
       last_nni_ = nni;
+      if (result.outcome != Outcome::ok) break;
     }
     if (result.outcome == Outcome::ok) t_ = t_out;
   }

@@ -71,6 +71,10 @@ class Integrator {
   // Fixed steps of opt_.dt from t_ to exactly t_out (the last one shortened),
   // honouring opt_.max_steps; `step(h)` advances t_, q_, v_ by one step.
   StepResult advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step);
+  // After one step of a library integrator that ended at t_new with state
+  // y = (q, v): stores and checks the state, lets the model update its
+  // history and reports the step.
+  StepResult accept_step_state(double t_new, const double* y, long nonlinear_iters, double wall_s);
 
   Model* model_ = nullptr;
   IntegratorOptions opt_;

@@ -42,6 +42,19 @@ StepResult Integrator::advance_fixed_steps(double t_out, const std::function<Ste
   return {};
 }
 
+StepResult Integrator::accept_step_state(double t_new, const double* y, long nonlinear_iters, double wall_s) {
+  const int n = model_->num_dofs();
+  const double h = t_new - t_;
+  t_ = t_new;
+  q_ = Eigen::Map<const Vec>(y, n);
+  v_ = Eigen::Map<const Vec>(y + n, n);
+  StepResult r = check_state(q_, v_, opt_);
+  if (r.outcome != Outcome::ok) return r;
+  model_->accept_step(t_, q_, v_, h);
+  if (on_step) on_step({t_, h, static_cast<int>(nonlinear_iters), wall_s});
+  return r;
+}
+
 std::vector<std::string> integrator_names() {
   return {"be-linear", "be-newton", "ida", "arkode-erk", "arkode-dirk", "arkode-imex", "symplectic"};
 }
