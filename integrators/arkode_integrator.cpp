@@ -25,15 +25,8 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   mem_.reset();
   mls_.reset();
   ls_.reset();
-  model_ = &model;
-  opt_ = opt;
-  t_ = t0;
+  bind(model, t0, q0, v0, opt);
   n_ = model.num_dofs();
-  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
-  q_ = q0;
-  v_ = v0;
-  for (int i : fixed_) v_[i] = 0.0;
-  stats_ = {};
   own_ = {};
   own_setups_ = own_solves_ = last_nni_ = 0;
   attempts_setup_ = -1;

@@ -62,7 +62,6 @@ class ArkodeIntegrator : public Integrator {
   Variant variant_;
   Vec qtmp_, vtmp_, acc_;
   int n_ = 0;
-  std::vector<int> fixed_;
   Evaluation ev_, mev_;
   bool mass_in_arkode_ = false;
   SparseMatrix mass_;  // constant M (mass in ARKODE)

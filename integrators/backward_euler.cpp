@@ -14,17 +14,10 @@ void zero_fixed(Vec& x, const std::vector<int>& fixed) {
 }  // namespace
 
 void BackwardEuler::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
-  model_ = &model;
-  opt_ = opt;
-  t_ = t0;
-  q_ = q0;
-  v_ = v0;
-  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
-  zero_fixed(v_, fixed_);
+  bind(model, t0, q0, v0, opt);
   allocate_evaluation(model, ev_);
   a_ = model.pattern();
   solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs());
-  stats_ = {};
 }
 
 void BackwardEuler::form_step_matrix(double h) {

@@ -36,7 +36,6 @@ class BackwardEuler : public Integrator {
   Evaluation ev_;
   SparseMatrix a_;
   std::unique_ptr<SparseSolver> solver_;
-  std::vector<int> fixed_;
 };
 
 }  // namespace wl

@@ -16,15 +16,8 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   // Release any previous run (memory before the objects it uses).
   mem_.reset();
   ls_.reset();
-  model_ = &model;
-  opt_ = opt;
-  t_ = t0;
+  bind(model, t0, q0, v0, opt);
   n_ = model.num_dofs();
-  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
-  q_ = q0;
-  v_ = v0;
-  for (int i : fixed_) v_[i] = 0.0;
-  stats_ = {};
   own_ = {};
   last_error_.clear();
   last_nni_ = 0;

@@ -44,7 +44,6 @@ class IdaIntegrator : public Integrator {
   void update_stats();
 
   int n_ = 0;
-  std::vector<int> fixed_;
   Evaluation ev_;
   SparseMatrix mass_;  // constant mass (when !mass_depends_on_q)
   double cj_setup_ = 1.0;  // c_j of the last Newton-matrix setup

@@ -71,6 +71,9 @@ class Integrator {
   // Fixed steps of opt_.dt from t_ to exactly t_out (the last one shortened),
   // honouring opt_.max_steps; `step(h)` advances t_, q_, v_ by one step.
   StepResult advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step);
+  // Shared part of initialize(): binds the model and options, sets the state
+  // (pinned DoFs at rest) and clears the statistics.
+  void bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt);
   // After one step of a library integrator that ended at t_new with state
   // y = (q, v): stores and checks the state, lets the model update its
   // history and reports the step.
@@ -80,6 +83,7 @@ class Integrator {
   IntegratorOptions opt_;
   double t_ = 0.0;
   Vec q_, v_;
+  std::vector<int> fixed_;  // pinned DoFs (model.fixed_dofs())
   IntegratorStats stats_;
 };
 

@@ -30,6 +30,17 @@ StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt)
   return {};
 }
 
+void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
+  model_ = &model;
+  opt_ = opt;
+  t_ = t0;
+  q_ = q0;
+  v_ = v0;
+  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
+  for (int i : fixed_) v_[i] = 0.0;
+  stats_ = {};
+}
+
 StepResult Integrator::advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step) {
   while (t_out - t_ > 1e-9 * opt_.dt) {
     if (stats_.steps >= opt_.max_steps) return {Outcome::max_steps, "step limit reached"};

@@ -5,17 +5,10 @@
 namespace wl {
 
 void SymplecticEuler::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
-  model_ = &model;
-  opt_ = opt;
-  t_ = t0;
-  q_ = q0;
-  v_ = v0;
-  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
-  for (int i : fixed_) v_[i] = 0.0;
+  bind(model, t0, q0, v0, opt);
   allocate_evaluation(model, ev_);
   solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs());
   factorized_ = false;
-  stats_ = {};
 }
 
 StepResult SymplecticEuler::step(double h) {

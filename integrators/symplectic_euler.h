@@ -24,7 +24,6 @@ class SymplecticEuler : public Integrator {
   Evaluation ev_;
   std::unique_ptr<SparseSolver> solver_;
   bool factorized_ = false;
-  std::vector<int> fixed_;
 };
 
 }  // namespace wl
