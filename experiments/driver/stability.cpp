@@ -141,11 +141,8 @@ StabilityResult run_stability(const StabilityConfig& cfg_in) {
   j.set("experiment", "stability");
   j.set("scene", scene_json(cfg.scene_path, cfg.scene_text, cfg.scene, cfg.overrides));
   Json p = Json::object();
-  Json ms = Json::array(), is = Json::array();
-  for (const auto& m : cfg.models) ms.push(m);
-  for (const auto& i : cfg.integrators) is.push(i);
-  p.set("models", ms);
-  p.set("integrators", is);
+  p.set("models", Json(cfg.models));
+  p.set("integrators", Json(cfg.integrators));
   p.set("multipliers", Json(cfg.multipliers));
   p.set("multiplier_meaning",
         "every yarn type's stretch_modulus_Pa and the FEM warp/weft stretch stiffness (N/m) multiplied by it");

@@ -204,11 +204,8 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
   j.set("experiment", "work-precision");
   j.set("scene", scene_json(cfg.scene_path, cfg.scene_text, cfg.scene, cfg.overrides));
   Json p = Json::object();
-  Json ms = Json::array(), is = Json::array();
-  for (const auto& m : cfg.models) ms.push(m);
-  for (const auto& i : cfg.integrators) is.push(i);
-  p.set("models", ms);
-  p.set("integrators", is);
+  p.set("models", Json(cfg.models));
+  p.set("integrators", Json(cfg.integrators));
   p.set("rtols", Json(cfg.rtols));
   p.set("atol_per_rtol", cfg.atol_per_rtol);
   p.set("adaptive_initial_dt_s", cfg.adaptive_initial_dt);

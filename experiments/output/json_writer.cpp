@@ -103,6 +103,11 @@ Json::Json(const std::vector<double>& xs) : kind_(Kind::array) {
   for (double x : xs) items_.emplace_back(x);
 }
 
+Json::Json(const std::vector<std::string>& xs) : kind_(Kind::array) {
+  items_.reserve(xs.size());
+  for (const std::string& x : xs) items_.emplace_back(x);
+}
+
 Json::Json(const std::map<std::string, std::string>& entries) : kind_(Kind::object) {
   for (const auto& [k, v] : entries) members_.emplace_back(k, Json(v));
 }

@@ -27,6 +27,7 @@ class Json {
   Json(std::string s) : kind_(Kind::string), string_(std::move(s)) {}
   Json(std::string_view s) : kind_(Kind::string), string_(s) {}
   Json(const std::vector<double>& xs);                      // array of numbers
+  Json(const std::vector<std::string>& xs);                 // array of strings
   Json(const std::map<std::string, std::string>& entries);  // object of strings
 
   static Json object() { Json j; j.kind_ = Kind::object; return j; }
