@@ -190,4 +190,33 @@ double Assembly::energy(const Vec& q, const Vec& constants) const {
   return total;
 }
 
+bool Assembly::add_parameter_derivative(const std::string& key, const Vec& q, const Vec& v, const Vec& constants,
+                                        Vec& dfdp) const {
+  bool any = false;
+  std::vector<double> ql, vl, fl;
+  for (const TermPlan& plan : plans_) {
+    const Term& term = *plan.term;
+    const std::vector<std::string> keys = term.parameter_keys();
+    const auto it = std::find(keys.begin(), keys.end(), key);
+    if (it == keys.end()) continue;
+    any = true;
+    const int k = static_cast<int>(it - keys.begin());
+    ql.resize(plan.n);
+    vl.resize(plan.n);
+    fl.resize(plan.n);
+    for (int e = 0; e < term.num_elements(); ++e) {
+      auto s = term.stencil(e);
+      for (int a = 0; a < plan.n; ++a) {
+        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
+        vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
+      }
+      std::fill(fl.begin(), fl.end(), 0.0);
+      term.parameter_derivative(e, k, ql.data(), vl.data(), fl.data());
+      for (int a = 0; a < plan.n; ++a)
+        if (is_dof(s[a])) dfdp[s[a]] += fl[a];
+    }
+  }
+  return any;
+}
+
 }  // namespace wl

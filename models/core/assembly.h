@@ -6,6 +6,7 @@
 // summation order is fixed, so results are bitwise reproducible.
 #pragma once
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "models/core/term.h"
@@ -38,6 +39,11 @@ class Assembly {
 
   // Potential energy of all conservative terms.
   double energy(const Vec& q, const Vec& constants) const;
+
+  // Adds ∂f/∂p for the parameter `key` (Term::parameter_keys()) of every term
+  // that depends on it into `dfdp`; returns whether any term does.
+  bool add_parameter_derivative(const std::string& key, const Vec& q, const Vec& v, const Vec& constants,
+                                Vec& dfdp) const;
 
  private:
   struct TermPlan {

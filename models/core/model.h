@@ -63,6 +63,15 @@ class Model {
   }
   // Output frame for the writers; `ev` holds a force evaluation at (t, q, v).
   virtual Frame frame(double t, const Vec& q, const Vec& v) = 0;
+  // Material parameters (scene keys) whose force derivative the model provides.
+  virtual std::vector<std::string> parameter_keys() const { return {}; }
+  // Sets dfdp = ∂f/∂p at (t, q, v) for the parameter `key`; false (dfdp zero)
+  // when the force does not depend on it. Auxiliary quantities are those of
+  // the last evaluate(), so evaluate at the same state first.
+  virtual bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v, Vec& dfdp) {
+    dfdp = Vec::Zero(num_dofs());
+    return false;
+  }
   // Short facts for `weavelab info` and the run summary (name -> value).
   virtual std::map<std::string, std::string> describe() const = 0;
 };

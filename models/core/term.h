@@ -59,6 +59,14 @@ class Term {
   // Element force and requested Jacobians, from local q and v. Must be
   // thread-safe for different e (no writes to shared state).
   virtual void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const = 0;
+
+  // Material parameters the force depends on, named by their scene keys
+  // (e.g. "fem.warp_stretch_N_per_m"), and ∂f/∂p of one element for the k-th
+  // of them (n values, added into dfdp; same thread-safety as evaluate()).
+  // Calibration differentiates equilibria through these (docs/calibration.md §3).
+  virtual std::vector<std::string> parameter_keys() const { return {}; }
+  virtual void parameter_derivative(int /*e*/, int /*k*/, const double* /*q*/, const double* /*v*/,
+                                    double* /*dfdp*/) const {}
 };
 
 // Helper base for terms whose elements all have N local DoFs: stores stencils

@@ -60,4 +60,17 @@ void TermModel::accept_step(double t, const Vec& q, const Vec& v, double h) {
   for (auto& term : terms_) term->accept_step(ctx, h);
 }
 
+std::vector<std::string> TermModel::parameter_keys() const {
+  std::vector<std::string> keys;
+  for (const auto& term : terms_)
+    for (const std::string& k : term->parameter_keys())
+      if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+  return keys;
+}
+
+bool TermModel::force_parameter_derivative(const std::string& key, double, const Vec& q, const Vec& v, Vec& dfdp) {
+  dfdp = Vec::Zero(num_dofs_);
+  return assembly_->add_parameter_derivative(key, q, v, constants_, dfdp);
+}
+
 }  // namespace wl

@@ -19,6 +19,8 @@ class TermModel : public Model {
   void evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) override;
   double potential_energy(const Vec& q) const override;
   void accept_step(double t, const Vec& q, const Vec& v, double h) override;
+  std::vector<std::string> parameter_keys() const override;
+  bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v, Vec& dfdp) override;
 
   const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
   const Vec& constants() const { return constants_; }

@@ -43,6 +43,17 @@ struct FemMaterial {
   double warp_bending_N_m = 0.0, weft_bending_N_m = 0.0;
 };
 
+// Scene keys of the material parameters, as terms name them in
+// Term::parameter_keys() ("fem." + the [fem] key).
+inline constexpr const char* kFemWarpStretch = "fem.warp_stretch_N_per_m";
+inline constexpr const char* kFemWeftStretch = "fem.weft_stretch_N_per_m";
+inline constexpr const char* kFemShear = "fem.shear_N_per_m";
+inline constexpr const char* kFemShearLockAngle = "fem.shear_lock_angle_rad";
+inline constexpr const char* kFemShearLockExponent = "fem.shear_lock_exponent";
+inline constexpr const char* kFemWarpBending = "fem.warp_bending_N_m";
+inline constexpr const char* kFemWeftBending = "fem.weft_bending_N_m";
+inline constexpr const char* kFemArealDensity = "fem.areal_density_kg_per_m2";
+
 class FemParameterError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "models/fem/fem_material.h"
+
 namespace wl {
 namespace {
 
@@ -19,6 +21,9 @@ Mat3 cross_matrix(const Vec3& a) {
 void HingeBendingTerm::add(const std::array<int, 12>& stencil, const Vec2& edge_uv, double area_sum, double theta0) {
   stencils_.push_back(stencil);
   coeff_.push_back(edge_stiffness(edge_uv) * edge_uv.squaredNorm() / area_sum);
+  const Vec2 d = edge_uv.normalized();
+  warp_share_.push_back(d.y() * d.y() * edge_uv.squaredNorm() / area_sum);
+  weft_share_.push_back(d.x() * d.x() * edge_uv.squaredNorm() / area_sum);
   theta0_.push_back(theta0);
 }
 
@@ -85,6 +90,18 @@ void HingeBendingTerm::evaluate(int el, const double* q, const double*, const El
   H.middleRows<3>(6) = Jg2;
   H.middleRows<3>(9) = Jg3;
   MatMap(out.dfdq) = -c * (grad * grad.transpose() + d * 0.5 * (H + H.transpose()));
+}
+
+std::vector<std::string> HingeBendingTerm::parameter_keys() const { return {kFemWarpBending, kFemWeftBending}; }
+
+void HingeBendingTerm::parameter_derivative(int el, int k, const double* q, const double*, double* dfdp) const {
+  // f = −coeff·(θ − θ₀)∇θ with coeff linear in k_warp and k_weft: evaluate at unit coefficient and scale.
+  double f[12] = {};
+  const double c = coeff_[el];
+  if (c == 0.0) return;
+  evaluate(el, q, nullptr, ElementOutput{f});
+  const double share = (k == 0 ? warp_share_[el] : weft_share_[el]) / c;
+  for (int a = 0; a < 12; ++a) dfdp[a] += share * f[a];
 }
 
 }  // namespace wl

@@ -39,6 +39,9 @@ class HingeBendingTerm : public StencilTerm<12> {
   void add(const std::array<int, 12>& stencil, const Vec2& edge_uv, double area_sum, double theta0 = 0.0);
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+  // k_warp, k_weft: V is linear in each through k_e.
+  std::vector<std::string> parameter_keys() const override;
+  void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
 
   // k_e for an edge of UV direction edge_uv (see above).
   double edge_stiffness(const Vec2& edge_uv) const;
@@ -48,6 +51,7 @@ class HingeBendingTerm : public StencilTerm<12> {
  private:
   double k_warp_, k_weft_;
   std::vector<double> coeff_;  // k_e ‖ē‖²/(Ā₁+Ā₂)
+  std::vector<double> warp_share_, weft_share_;  // d_v², d_u² times ‖ē‖²/(Ā₁+Ā₂)
   std::vector<double> theta0_;
 };
 

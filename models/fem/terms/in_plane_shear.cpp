@@ -2,11 +2,13 @@
 
 #include <cmath>
 
+#include "models/fem/fem_material.h"
+
 namespace wl {
 
 InPlaneShearTerm::InPlaneShearTerm(double k, double lock_angle, double lock_exponent)
     : k_(k), locking_(lock_exponent > 0.0 && lock_angle > 0.0 && lock_angle < M_PI / 2),
-      s_lock_(std::sin(lock_angle)), m_(lock_exponent) {}
+      lock_angle_(lock_angle), s_lock_(std::sin(lock_angle)), m_(lock_exponent) {}
 
 void InPlaneShearTerm::add(const std::array<int, 9>& stencil, const TriangleRest& rest) {
   stencils_.push_back(stencil);
@@ -59,6 +61,35 @@ void InPlaneShearTerm::evaluate(int e, const double* q, const double*, const Ele
   if (out.dfdq)
     add_column_hessian(r, ddps * gu * gu.transpose() + dps * huu, ddps * gu * gv.transpose() + dps * huv,
                        ddps * gv * gv.transpose() + dps * hvv, -c, out.dfdq);
+}
+
+std::vector<std::string> InPlaneShearTerm::parameter_keys() const {
+  if (!locking_) return {kFemShear};
+  return {kFemShear, kFemShearLockAngle, kFemShearLockExponent};
+}
+
+void InPlaneShearTerm::parameter_derivative(int e, int k, const double* q, const double*, double* dfdp) const {
+  const TriangleRest& r = rest_[e];
+  const Vec3 wu = warp_vector(r, q), wv = weft_vector(r, q);
+  const double lu = wu.norm(), lv = wv.norm();
+  if (lu < 1e-300 || lv < 1e-300) return;
+  const Vec3 p = wu / lu, n = wv / lv;
+  const double s = p.dot(n);
+  const Vec3 gu = (n - s * p) / lu, gv = (p - s * n) / lv;
+  // f = −(A/2) k ψ'(s) ∇s; differentiate the factor k ψ'(s) only.
+  double dpsi_dp = 0.0;
+  if (k == 0) {
+    double ps, dps, ddps;
+    psi(s, &ps, &dps, &ddps);
+    dpsi_dp = dps;
+  } else {
+    // ψ' = 2s(1 + r^m), r = s²/s_l², s_l = sin γ_lock.
+    const double rr = s * s / (s_lock_ * s_lock_);
+    const double rm = rr > 0 ? std::pow(rr, m_) : 0.0;
+    if (k == 1) dpsi_dp = k_ * (-4.0 * m_ * s * rm / s_lock_) * std::cos(lock_angle_);
+    else dpsi_dp = rr > 0 ? k_ * 2.0 * s * rm * std::log(rr) : 0.0;
+  }
+  add_column_gradient(r, gu, gv, -r.area * 0.5 * dpsi_dp, dfdp);
 }
 
 }  // namespace wl

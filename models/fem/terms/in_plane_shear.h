@@ -27,6 +27,10 @@ class InPlaneShearTerm : public StencilTerm<9> {
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
+  // k_sh, and with locking γ_lock and m (docs/calibration.md §3).
+  std::vector<std::string> parameter_keys() const override;
+  void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
+
   // ψ(s) and its first two derivatives (exposed for tests).
   void psi(double s, double* p, double* dp, double* ddp) const;
   bool locking() const { return locking_; }
@@ -34,7 +38,7 @@ class InPlaneShearTerm : public StencilTerm<9> {
  private:
   double k_;
   bool locking_;
-  double s_lock_, m_;
+  double lock_angle_, s_lock_, m_;
   std::vector<TriangleRest> rest_;
 };
 

@@ -1,5 +1,7 @@
 #include "models/fem/terms/warp_weft_stretch.h"
 
+#include "models/fem/fem_material.h"
+
 namespace wl {
 namespace {
 
@@ -40,6 +42,16 @@ void WarpWeftStretchTerm::evaluate(int e, const double* q, const double*, const 
   // f = −A Cᵀ∇ψ, ∂f/∂x = −A Cᵀ∇²ψ C (deformation_gradient.h); no u–v coupling.
   add_column_gradient(r, gu, gv, -r.area, out.force);
   if (out.dfdq) add_column_hessian(r, huu, Mat3::Zero(), hvv, -r.area, out.dfdq);
+}
+
+std::vector<std::string> WarpWeftStretchTerm::parameter_keys() const { return {kFemWarpStretch, kFemWeftStretch}; }
+
+void WarpWeftStretchTerm::parameter_derivative(int e, int k, const double* q, const double*, double* dfdp) const {
+  const TriangleRest& r = rest_[e];
+  Vec3 g;
+  Mat3 h;
+  stretch_derivatives(1.0, k == 0 ? warp_vector(r, q) : weft_vector(r, q), g, h);
+  add_column_gradient(r, k == 0 ? g : Vec3::Zero(), k == 0 ? Vec3::Zero() : g, -r.area, dfdp);
 }
 
 }  // namespace wl

@@ -24,6 +24,9 @@ class WarpWeftStretchTerm : public StencilTerm<9> {
   void add(const std::array<int, 9>& stencil, const TriangleRest& rest);
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+  // k_u, k_v: the force is linear in each, ∂f/∂k_u = f at k_u = 1, k_v = 0.
+  std::vector<std::string> parameter_keys() const override;
+  void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
 
  private:
   double k_u_, k_v_;

@@ -1,0 +1,92 @@
+#include "calibration/equilibrium.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace wl {
+
+EquilibriumSolver::EquilibriumSolver(Model& model, std::vector<int> prescribed) : model_(model) {
+  held_ = std::move(prescribed);
+  for (int d : model.fixed_dofs()) held_.push_back(d);
+  std::sort(held_.begin(), held_.end());
+  held_.erase(std::unique(held_.begin(), held_.end()), held_.end());
+  is_held_.assign(model.num_dofs(), 0);
+  for (int d : held_) is_held_[d] = 1;
+  solver_ = std::make_unique<SparseSolver>(model.pattern(), held_);
+  allocate_evaluation(model, eval_);
+  zero_v_ = Vec::Zero(model.num_dofs());
+}
+
+double EquilibriumSolver::free_norm(const Vec& f) const {
+  double m = 0.0;
+  for (Eigen::Index i = 0; i < f.size(); ++i)
+    if (!is_held_[i]) m = std::max(m, std::abs(f[i]));
+  return m;
+}
+
+double EquilibriumSolver::held_norm(const Vec& f) const {
+  double m = 0.0;
+  for (int d : held_) m = std::max(m, std::abs(f[d]));
+  return m;
+}
+
+EquilibriumResult EquilibriumSolver::solve(Vec& q, const EquilibriumOptions& opt) {
+  EquilibriumResult res;
+  Vec dx, trial;
+  model_.evaluate(0.0, q, zero_v_, kForce | kDfdq, eval_);
+  for (;;) {
+    res.residual = free_norm(eval_.force);
+    if (!std::isfinite(res.residual)) {
+      res.message = "the force is not finite";
+      return res;
+    }
+    const double tol = opt.rtol * held_norm(eval_.force) + opt.atol;
+    neg_k_ = -eval_.dfdq;
+    const bool factored = solver_->factorize(neg_k_);
+    if (res.residual <= tol) {
+      res.converged = factored;
+      if (!factored) res.message = "singular stiffness at equilibrium";
+      return res;
+    }
+    if (!factored) {
+      res.message = "singular stiffness after " + std::to_string(res.iterations) + " iterations";
+      return res;
+    }
+    if (res.iterations >= opt.max_iterations) {
+      std::ostringstream s;
+      s << "no equilibrium after " << res.iterations << " Newton iterations (residual " << res.residual
+        << " N, tolerance " << tol << " N)";
+      res.message = s.str();
+      return res;
+    }
+    ++res.iterations;
+    solver_->solve(eval_.force, dx);  // −K dx = f
+    // Backtracking on ‖f_f‖: accept the first step that reduces the residual.
+    double alpha = 1.0;
+    bool accepted = false;
+    for (int b = 0; b <= opt.max_backtracks; ++b, alpha *= 0.5) {
+      trial = q + alpha * dx;
+      model_.evaluate(0.0, trial, zero_v_, kForce | kDfdq, eval_);
+      const double r = free_norm(eval_.force);
+      if (std::isfinite(r) && r < (1.0 - 1e-4 * alpha) * res.residual) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      // No decrease along the Newton direction (an inexact Jacobian, e.g. the
+      // yarn model's frozen F_n, or a non-smooth response): report it.
+      model_.evaluate(0.0, q, zero_v_, kForce | kDfdq, eval_);
+      std::ostringstream s;
+      s << "line search failed after " << res.iterations << " iterations (residual " << res.residual << " N)";
+      res.message = s.str();
+      return res;
+    }
+    q = trial;
+  }
+}
+
+void EquilibriumSolver::solve_free(const Vec& b, Vec& x) const { solver_->solve(b, x); }
+
+}  // namespace wl

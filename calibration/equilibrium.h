@@ -1,0 +1,66 @@
+// Quasi-static equilibrium of a Model under prescribed boundary motion
+// (docs/calibration.md §1): find the free DoFs q_f with f_f(q, v = 0) = 0 by
+// Newton's method on the assembled stiffness K = ∂f/∂q, with a backtracking
+// line search on ‖f_f‖. The model's own pinned DoFs and the prescribed DoFs
+// hold the values the caller put into q.
+//
+// Which forces take part is the caller's choice of model: the virtual material
+// tests build their patches with stretch, bending, shear and (when sliding)
+// parallel contact only — gravity, wind, handles, friction and inertia are
+// switched off (material_test_scene(), virtual_tests.h). Velocities are zero.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/sparse_solver.h"
+#include "models/core/model.h"
+
+namespace wl {
+
+struct EquilibriumOptions {
+  int max_iterations = 60;
+  // Converged when ‖f_f‖∞ ≤ rtol·‖f_prescribed‖∞ + atol (reactions set the force scale).
+  double rtol = 1e-10;
+  double atol = 1e-13;  // [N]
+  int max_backtracks = 20;
+};
+
+struct EquilibriumResult {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;  // ‖f_f‖∞ at the returned state [N]
+  std::string message;    // why it did not converge
+};
+
+class EquilibriumSolver {
+ public:
+  // `prescribed`: DoFs whose values the caller sets (in addition to the model's pinned DoFs).
+  EquilibriumSolver(Model& model, std::vector<int> prescribed);
+
+  // Solves in place: q holds the prescribed values and the initial guess of the free DoFs.
+  // After a converged solve the stiffness at q is factorized (solve_free()).
+  EquilibriumResult solve(Vec& q, const EquilibriumOptions& options = {});
+
+  // Force and ∂f/∂q at the state of the last solve.
+  const Evaluation& evaluation() const { return eval_; }
+  // x = (−K_ff)⁻¹ b_f on the free DoFs (zero on the held DoFs), with the
+  // factorization of the last converged solve: dq_f/dp = solve_free(∂f/∂p).
+  void solve_free(const Vec& b, Vec& x) const;
+  const std::vector<int>& held() const { return held_; }
+  Model& model() { return model_; }
+
+ private:
+  double free_norm(const Vec& f) const;
+  double held_norm(const Vec& f) const;
+
+  Model& model_;
+  std::vector<int> held_;        // pinned ∪ prescribed, sorted
+  std::vector<char> is_held_;
+  std::unique_ptr<SparseSolver> solver_;
+  Evaluation eval_;
+  SparseMatrix neg_k_;
+  Vec zero_v_;
+};
+
+}  // namespace wl

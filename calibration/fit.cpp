@@ -1,0 +1,313 @@
+#include "calibration/fit.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include <ceres/ceres.h>
+#include <ceres/covariance.h>
+#include <Eigen/SVD>
+
+namespace wl {
+namespace {
+
+struct ParamSpec {
+  const char* key;
+  double FemMaterial::*field;
+};
+
+const ParamSpec kParams[] = {
+    {"warp_stretch_N_per_m", &FemMaterial::warp_stretch_N_per_m},
+    {"weft_stretch_N_per_m", &FemMaterial::weft_stretch_N_per_m},
+    {"shear_N_per_m", &FemMaterial::shear_N_per_m},
+    {"shear_lock_angle_rad", &FemMaterial::shear_lock_angle_rad},
+    {"shear_lock_exponent", &FemMaterial::shear_lock_exponent},
+    {"warp_bending_N_m", &FemMaterial::warp_bending_N_m},
+    {"weft_bending_N_m", &FemMaterial::weft_bending_N_m},
+};
+
+constexpr double kLockAngleMax = 0.999 * std::numbers::pi / 2;
+
+std::vector<std::string> prefixed(const std::vector<std::string>& keys) {
+  std::vector<std::string> out;
+  for (const auto& k : keys) out.push_back("fem." + k);
+  return out;
+}
+
+// One test curve: residuals and their Jacobian in θ = log p.
+class CurveCost final : public ceres::CostFunction {
+ public:
+  CurveCost(const FitCurve& curve, const FemMaterial& base, const std::vector<std::string>& free,
+            const ContinuumTest& continuum, int* evaluations)
+      : curve_(curve), base_(base), free_(free), keys_(prefixed(free)), continuum_(continuum),
+        evaluations_(evaluations) {
+    double range = 0.0;
+    for (double r : curve.target) range = std::max(range, std::abs(r));
+    if (!(range > 0)) throw std::invalid_argument(test_name(curve.test.kind) + ": the target curve is zero");
+    weight_ = 1.0 / (range * std::sqrt(double(curve.target.size())));
+    set_num_residuals(static_cast<int>(curve.target.size()));
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(free.size()));
+  }
+
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
+    FemMaterial m = base_;
+    for (size_t k = 0; k < free_.size(); ++k) material_value(m, free_[k]) = std::exp(x[0][k]);
+    const bool want_j = jacobians && jacobians[0];
+    const ResponseCurve c = continuum_(m, curve_.test, want_j ? keys_ : std::vector<std::string>{});
+    ++*evaluations_;
+    if (!c.complete || c.points.size() != curve_.target.size()) return false;  // Ceres retries a smaller step
+    const int n = static_cast<int>(free_.size());
+    for (size_t i = 0; i < c.points.size(); ++i) {
+      residuals[i] = weight_ * (c.points[i].response - curve_.target[i]);
+      if (!want_j) continue;
+      for (int k = 0; k < n; ++k)  // dr/dθ = w·dR/dp·p
+        jacobians[0][i * n + k] = weight_ * c.sensitivities[i][k] * std::exp(x[0][k]);
+    }
+    return true;
+  }
+
+ private:
+  const FitCurve& curve_;
+  FemMaterial base_;
+  std::vector<std::string> free_, keys_;
+  const ContinuumTest& continuum_;
+  int* evaluations_;
+  double weight_ = 1.0;
+};
+
+class Progress final : public ceres::IterationCallback {
+ public:
+  explicit Progress(int start) : start_(start) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    std::fprintf(stderr, "  fit start %d: iteration %d, cost %.6g, |gradient| %.3g\n", start_, s.iteration, s.cost,
+                 s.gradient_max_norm);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  int start_;
+};
+
+struct Run {
+  std::unique_ptr<ceres::Problem> problem;
+  std::vector<double> theta;
+  ceres::Solver::Summary summary;
+};
+
+}  // namespace
+
+const std::vector<std::string>& fittable_parameters() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> k;
+    for (const ParamSpec& p : kParams) k.push_back(p.key);
+    return k;
+  }();
+  return keys;
+}
+
+double& material_value(FemMaterial& m, const std::string& key) {
+  for (const ParamSpec& p : kParams)
+    if (key == p.key) return m.*(p.field);
+  std::string known;
+  for (const ParamSpec& p : kParams) known += std::string(known.empty() ? "" : ", ") + p.key;
+  throw std::invalid_argument("unknown FEM parameter '" + key + "', expected one of " + known);
+}
+
+std::vector<std::string> informed_parameters(TestKind kind, const FemMaterial& guess) {
+  switch (kind) {
+    case TestKind::uniaxial_warp: return {"warp_stretch_N_per_m"};
+    case TestKind::uniaxial_weft: return {"weft_stretch_N_per_m"};
+    case TestKind::biaxial: return {"warp_stretch_N_per_m", "weft_stretch_N_per_m"};
+    case TestKind::shear:
+      if (guess.shear_lock_angle_rad > 0 && guess.shear_lock_exponent > 0)
+        return {"shear_N_per_m", "shear_lock_angle_rad", "shear_lock_exponent"};
+      return {"shear_N_per_m"};
+    case TestKind::bending_warp: return {"warp_bending_N_m"};
+    case TestKind::bending_weft: return {"weft_bending_N_m"};
+  }
+  return {};
+}
+
+FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& guess, const ContinuumTest& continuum,
+                        const FitOptions& opt) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  if (curves.empty()) throw std::invalid_argument("no test curves to fit");
+
+  // Free parameters: as given, else every key some curve informs (in the canonical order).
+  std::vector<std::string> free = opt.free;
+  if (free.empty())
+    for (const std::string& key : fittable_parameters())
+      for (const FitCurve& c : curves) {
+        const auto inf = informed_parameters(c.test.kind, guess);
+        if (std::find(inf.begin(), inf.end(), key) != inf.end()) {
+          free.push_back(key);
+          break;
+        }
+      }
+  FemMaterial base = guess;
+  const int n = static_cast<int>(free.size());
+  std::vector<double> lower(n), upper(n), theta0(n);
+  for (int k = 0; k < n; ++k) {
+    const double p0 = material_value(base, free[k]);
+    if (!(p0 > 0)) throw std::invalid_argument("FEM parameter '" + free[k] + "' has no positive start value");
+    theta0[k] = std::log(p0);
+    lower[k] = theta0[k] - std::log(opt.bound_factor);
+    upper[k] = theta0[k] + std::log(opt.bound_factor);
+    if (free[k] == "shear_lock_angle_rad") upper[k] = std::min(upper[k], std::log(kLockAngleMax));
+  }
+
+  FitResult result;
+  std::mt19937 rng(opt.seed);
+  std::uniform_real_distribution<double> draw(-std::log(opt.start_spread), std::log(opt.start_spread));
+  Run best;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (int s = 0; s < std::max(1, opt.starts); ++s) {
+    Run run;
+    run.theta = theta0;
+    if (s > 0)
+      for (int k = 0; k < n; ++k) run.theta[k] = std::clamp(theta0[k] + draw(rng), lower[k], upper[k]);
+    StartOutcome outcome;
+    for (int k = 0; k < n; ++k) outcome.start.push_back(std::exp(run.theta[k]));
+
+    ceres::Problem::Options popt;
+    popt.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+    popt.loss_function_ownership = ceres::TAKE_OWNERSHIP;
+    run.problem = std::make_unique<ceres::Problem>(popt);
+    for (const FitCurve& c : curves) {
+      ceres::LossFunction* loss = nullptr;
+      if (opt.loss == "huber") loss = new ceres::HuberLoss(0.05);
+      else if (opt.loss == "cauchy") loss = new ceres::CauchyLoss(0.05);
+      else if (opt.loss != "none")
+        throw std::invalid_argument("unknown loss '" + opt.loss + "', expected none, huber or cauchy");
+      run.problem->AddResidualBlock(new CurveCost(c, base, free, continuum, &result.evaluations), loss,
+                                    run.theta.data());
+    }
+    for (int k = 0; k < n; ++k) {
+      run.problem->SetParameterLowerBound(run.theta.data(), k, lower[k]);
+      run.problem->SetParameterUpperBound(run.theta.data(), k, upper[k]);
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = opt.max_iterations;
+    so.function_tolerance = 1e-16;
+    so.gradient_tolerance = 1e-16;
+    so.parameter_tolerance = 1e-14;
+    so.num_threads = 1;  // each curve evaluation already uses the assembly's threads
+    so.logging_type = ceres::SILENT;
+    Progress progress(s + 1);
+    if (opt.progress) {
+      so.callbacks.push_back(&progress);
+      std::fprintf(stderr, "  fit start %d of %d\n", s + 1, opt.starts);
+    }
+    ceres::Solve(so, run.problem.get(), &run.summary);
+    outcome.usable = run.summary.IsSolutionUsable();
+    outcome.cost = run.summary.final_cost;
+    outcome.iterations = static_cast<int>(run.summary.iterations.size()) - 1;
+    outcome.message = run.summary.message;
+    for (int k = 0; k < n; ++k) outcome.value.push_back(std::exp(run.theta[k]));
+    result.starts.push_back(outcome);
+    if (outcome.usable && outcome.cost < best_cost) {
+      best_cost = outcome.cost;
+      best = std::move(run);
+    }
+  }
+  if (!best.problem) {
+    result.message = "no start gave a usable solution: " + result.starts.front().message;
+    result.material = base;
+    return result;
+  }
+  result.converged = best.summary.termination_type == ceres::CONVERGENCE;
+  result.message = best.summary.message;
+  result.cost = best.summary.final_cost;
+  result.iterations = static_cast<int>(best.summary.iterations.size()) - 1;
+  result.material = base;
+  for (int k = 0; k < n; ++k) material_value(result.material, free[k]) = std::exp(best.theta[k]);
+
+  // Weighted Jacobian at the optimum (residual count m × n, in θ).
+  double cost = 0;
+  std::vector<double> residuals;
+  ceres::CRSMatrix crs;
+  best.problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, &residuals, nullptr, &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r)
+    for (int i = crs.rows[r]; i < crs.rows[r + 1]; ++i) J(r, crs.cols[i]) = crs.values[i];
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J);
+  for (int i = 0; i < svd.singularValues().size(); ++i) result.singular_values.push_back(svd.singularValues()[i]);
+  const double max_col = J.colwise().norm().maxCoeff();
+
+  // Covariance of θ: (JᵀJ)⁻¹ from Ceres, times the residual variance σ² = 2·cost/(m − n).
+  const int m = crs.num_rows;
+  const double sigma2 = m > n ? 2.0 * cost / (m - n) : std::numeric_limits<double>::quiet_NaN();
+  ceres::Covariance::Options copt;
+  copt.algorithm_type = ceres::DENSE_SVD;
+  ceres::Covariance cov(copt);
+  std::vector<std::pair<const double*, const double*>> blocks{{best.theta.data(), best.theta.data()}};
+  Eigen::MatrixXd C;
+  if (m <= n) {
+    result.covariance_message = "fewer residuals than parameters";
+  } else if (cov.Compute(blocks, best.problem.get())) {
+    C.resize(n, n);
+    cov.GetCovarianceBlock(best.theta.data(), best.theta.data(), C.data());  // row-major; C is symmetric
+    C *= sigma2;
+  } else {
+    result.covariance_message = "the Jacobian is rank deficient: some parameter is not identifiable (singular values)";
+  }
+
+  for (int k = 0; k < n; ++k) {
+    FittedParameter p;
+    p.key = free[k];
+    p.start = std::exp(theta0[k]);
+    p.value = std::exp(best.theta[k]);
+    p.lower = std::exp(lower[k]);
+    p.upper = std::exp(upper[k]);
+    const double span = 1e-6 * (upper[k] - lower[k]);
+    p.at_bound = best.theta[k] - lower[k] < span || upper[k] - best.theta[k] < span;
+    p.weakly_determined = J.col(k).norm() < 1e-3 * max_col;
+    p.std_error = C.size() ? p.value * std::sqrt(std::max(0.0, C(k, k))) : std::numeric_limits<double>::quiet_NaN();
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (const StartOutcome& s : result.starts)
+      if (s.usable) {
+        lo = std::min(lo, s.value[k]);
+        hi = std::max(hi, s.value[k]);
+      }
+    p.start_spread = hi / lo - 1.0;
+    result.parameters.push_back(p);
+  }
+  if (C.size()) {
+    result.correlation.assign(n, std::vector<double>(n, 0.0));
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) {
+        const double d = std::sqrt(C(a, a) * C(b, b));
+        result.correlation[a][b] = d > 0 ? C(a, b) / d : (a == b ? 1.0 : 0.0);
+      }
+  }
+
+  // Per-curve fit: R_fem at the ladder and the relative RMS.
+  for (const FitCurve& c : curves) {
+    const ResponseCurve r = continuum(result.material, c.test, {});
+    ++result.evaluations;
+    double range = 0, sum = 0;
+    std::vector<double> values;
+    for (size_t i = 0; i < c.target.size(); ++i) {
+      range = std::max(range, std::abs(c.target[i]));
+      const double v = i < r.points.size() ? r.points[i].response : std::numeric_limits<double>::quiet_NaN();
+      values.push_back(v);
+      sum += (v - c.target[i]) * (v - c.target[i]);
+    }
+    result.fitted.push_back(values);
+    result.relative_rms.push_back(std::sqrt(sum / c.target.size()) / range);
+  }
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  result.cpu_s = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  return result;
+}
+
+}  // namespace wl

@@ -1,0 +1,99 @@
+// Virtual material tests (docs/calibration.md §2): a square patch of the
+// scene's fabric is deformed by a ladder of prescribed boundary motions and
+// brought to quasi-static equilibrium at each rung; the response is the work
+// conjugate of the load parameter λ per unit rest area,
+//   R(λ) = (1/A) dW/dλ = −(1/A) Σ_b f_b · ∂x_b/∂λ,
+// summed over the prescribed DoFs b (f the internal force there, so −f the
+// reaction), A = ((N−1)L)² the area the patch's crossings span. For a uniaxial
+// strain this is the reaction force per unit width [N/m], for a shear angle the
+// shear force per unit width [N/m], for a curvature the moment per unit width
+// [N·m/m = N].
+//
+// Boundary: the outer ring of crossings follows the affine map (stretch, shear)
+// or, with the next ring so that the edges are clamped in rotation, the
+// cylinder (bending) of λ; the interior is free. A clamped ring has no
+// free edges that curl or neck, and the continuum patch of the same crossings
+// gets the very same boundary, so edge effects enter both sides of the fit
+// alike (docs/calibration.md §2 discusses the choice).
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "calibration/equilibrium.h"
+#include "models/core/model.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+enum class TestKind { uniaxial_warp, uniaxial_weft, biaxial, shear, bending_warp, bending_weft };
+
+struct TestSpec {
+  TestKind kind = TestKind::uniaxial_warp;
+  std::vector<double> ladder;  // load parameters λ, increasing, > 0
+};
+
+// Names as on the command line: uniaxial-warp, uniaxial-weft, biaxial, shear,
+// bending-warp, bending-weft.
+const std::vector<std::string>& test_names();
+std::string test_name(TestKind kind);
+// Throws std::invalid_argument naming the known tests.
+TestKind test_kind(const std::string& name);
+std::string load_unit(TestKind kind);      // "1" (strain), "rad", "1/m"
+std::string response_unit(TestKind kind);  // "N/m" or "N"
+// Default ladder for a patch of N crossings per side at spacing L.
+std::vector<double> default_ladder(TestKind kind, int patch, double spacing_m);
+
+// The scene a material test runs on: `patch` × `patch` crossings of the
+// scene's fabric (pattern, yarn types and their order, R, L, contact
+// parameters), flat, with only the material terms (stretch, bending, shear,
+// parallel contact when sliding), no pins or handles. Sliding is frozen
+// unless `sliding` (docs/calibration.md §2: without friction nothing holds a
+// sliding coordinate, with friction the static answer depends on the history).
+// Throws std::invalid_argument when the patch is smaller than the pattern's
+// repeat plus a free interior.
+Scene material_test_scene(const Scene& scene, int patch, bool sliding = false);
+// Smallest patch for a scene: one pattern repeat inside the two held rings of the bending tests, at least 6.
+int minimum_patch(const Scene& scene);
+
+// Position of crossing (i, j) of the patch under load λ, and its derivative ∂x/∂λ.
+struct PatchMap {
+  TestKind kind;
+  int patch;
+  double spacing_m, height_m;
+  Vec3 position(int i, int j, double lambda) const;
+  Vec3 derivative(int i, int j, double lambda) const;
+};
+
+struct ResponsePoint {
+  double load = 0.0;
+  double response = 0.0;
+  int newton_iterations = 0;
+};
+
+struct ResponseCurve {
+  TestKind kind;
+  std::vector<ResponsePoint> points;  // the rungs that converged, in order
+  bool complete = true;               // false: a rung did not converge (message)
+  std::string message;
+  // d response / d p for each requested parameter key, per point (continuum).
+  std::vector<std::vector<double>> sensitivities;  // [point][parameter]
+};
+
+// Runs one test on a model of a material test scene (yarn or FEM). The
+// crossings map to DoFs through `x_dof(i, j)` (index of x of crossing (i, j)).
+// When `parameter_keys` is not empty, also the exact dR/dp by the implicit
+// function theorem: dq_f/dp = (−K_ff)⁻¹ ∂f_f/∂p with the converged
+// factorization (docs/calibration.md §3).
+ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>& x_dof, const TestSpec& test,
+                                int patch, double spacing_m, const std::vector<std::string>& parameter_keys = {},
+                                const EquilibriumOptions& options = {});
+
+// The same for the yarn and continuum models of a material test scene.
+ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const EquilibriumOptions& options = {});
+struct FemMaterial;
+ResponseCurve run_fem_test(const Scene& test_scene, const FemMaterial& material, const TestSpec& test,
+                           const std::vector<std::string>& parameter_keys = {},
+                           const EquilibriumOptions& options = {});
+
+}  // namespace wl

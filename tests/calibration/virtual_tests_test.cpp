@@ -1,0 +1,100 @@
+// Virtual material tests: analytic limits of both models and the implicit-
+// function-theorem sensitivities of the continuum against central differences.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "calibration/fit.h"
+#include "calibration/virtual_tests.h"
+#include "models/fem/fem_material.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+namespace {
+
+Scene hanging_wind() { return load_scene(WEAVELAB_SOURCE_DIR "/experiments/scenes/hanging_wind.toml"); }
+
+TEST(VirtualTests, YarnUniaxialWarpOfStraightYarnsIsTheirStretchStiffness) {
+  // Straight, uncrimped yarns with sliding frozen: only the warps stretch, each by ε over (N−1)L,
+  // so W = Σ_j ½k_s,j (N−1)L ε² and R = dW/dε / ((N−1)L)² = Σ_j k_s,j ε / ((N−1)L).
+  const Scene scene = hanging_wind();
+  const int n = 7;
+  const Scene patch = material_test_scene(scene, n);
+  const double L = scene.spacing_m, area = std::numbers::pi * scene.radius_m * scene.radius_m;
+  double sum_ks = 0;
+  for (int j = 0; j < n; ++j) sum_ks += scene.warp_type(j).stretch_modulus_Pa * area;
+  const TestSpec test{TestKind::uniaxial_warp, {0.005, 0.01, 0.02}};
+  const ResponseCurve c = run_yarn_test(patch, test);
+  ASSERT_TRUE(c.complete) << c.message;
+  for (const ResponsePoint& p : c.points)
+    EXPECT_NEAR(p.response, sum_ks * p.load / ((n - 1) * L), 1e-9 * sum_ks / L) << "strain " << p.load;
+}
+
+TEST(VirtualTests, FemUniaxialAndBiaxialResponsesAreTheMembraneStiffness) {
+  const Scene patch = material_test_scene(hanging_wind(), 7);
+  FemMaterial m = default_fem_material(patch);
+  m.warp_stretch_N_per_m = 300.0;
+  m.weft_stretch_N_per_m = 120.0;
+  for (auto [kind, k] : {std::pair{TestKind::uniaxial_warp, 300.0}, std::pair{TestKind::uniaxial_weft, 120.0},
+                         std::pair{TestKind::biaxial, 420.0}}) {
+    const ResponseCurve c = run_fem_test(patch, m, {kind, {0.004, 0.012}});
+    ASSERT_TRUE(c.complete) << c.message;
+    for (const ResponsePoint& p : c.points) EXPECT_NEAR(p.response, k * p.load, 1e-9 * k) << test_name(kind);
+  }
+}
+
+TEST(VirtualTests, FemBendingAtSmallCurvatureIsTheBendingStiffness) {
+  // On the grid mesh a cylinder of curvature κ bends only the hinges across edges along the
+  // cylinder's axis, each by κL at ½k per unit coefficient (docs/models.md §6.5); the
+  // N−2 interior columns of them give W = ½kκ²L²(N−2)(N−1), so R = dW/dκ/((N−1)L)² =
+  // kκ(N−2)/(N−1), up to the membrane work of the chord-vs-arc strain (κL)²/24 (1e-5 here).
+  const int n = 9;
+  const Scene patch = material_test_scene(hanging_wind(), n);
+  FemMaterial m = default_fem_material(patch);
+  for (TestKind kind : {TestKind::bending_warp, TestKind::bending_weft}) {
+    const double k = kind == TestKind::bending_warp ? m.warp_bending_N_m : m.weft_bending_N_m;
+    const ResponseCurve c = run_fem_test(patch, m, {kind, {1.0}});
+    ASSERT_TRUE(c.complete) << c.message;
+    EXPECT_NEAR(c.points[0].response, k * (n - 2.0) / (n - 1.0), 1e-4 * k) << test_name(kind);
+  }
+}
+
+TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
+  // Shear at 0.2 and 0.4 rad: below and past the lock angle (0.52 rad here... and its stiffening).
+  const Scene patch = material_test_scene(hanging_wind(), 7);
+  const FemMaterial m = default_fem_material(patch);
+  for (const std::string& name : test_names()) {
+    const TestKind kind = test_kind(name);
+    const TestSpec test{kind, {default_ladder(kind, 7, patch.spacing_m)[3], default_ladder(kind, 7, patch.spacing_m)[7]}};
+    const std::vector<std::string> keys = informed_parameters(kind, m);
+    std::vector<std::string> prefixed;
+    for (const auto& k : keys) prefixed.push_back("fem." + k);
+    const ResponseCurve c = run_fem_test(patch, m, test, prefixed);
+    ASSERT_TRUE(c.complete) << c.message;
+    for (size_t k = 0; k < keys.size(); ++k) {
+      FemMaterial hi = m, lo = m;
+      const double p = material_value(hi, keys[k]), h = 1e-5 * p;
+      material_value(hi, keys[k]) = p + h;
+      material_value(lo, keys[k]) = p - h;
+      const ResponseCurve ch = run_fem_test(patch, hi, test), cl = run_fem_test(patch, lo, test);
+      for (size_t i = 0; i < c.points.size(); ++i) {
+        const double fd = (ch.points[i].response - cl.points[i].response) / (2 * h);
+        const double exact = c.sensitivities[i][k];
+        EXPECT_NE(exact, 0.0) << name << " " << keys[k];
+        EXPECT_NEAR(exact, fd, 1e-5 * std::abs(fd) + 1e-9 * std::abs(c.points[i].response) / p)
+            << name << " " << keys[k] << " at " << c.points[i].load;
+      }
+    }
+  }
+}
+
+TEST(VirtualTests, PatchSmallerThanThePatternIsRejected) {
+  Scene s = hanging_wind();
+  s.pattern.kind = Pattern::Kind::satin;  // 5-harness: needs 5 + 4
+  EXPECT_THROW(material_test_scene(s, 8), std::invalid_argument);
+  EXPECT_NO_THROW(material_test_scene(s, 9));
+}
+
+}  // namespace
+}  // namespace wl
