@@ -261,6 +261,8 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     result.covariance_message = "the Jacobian is rank deficient: some parameter is not identifiable (singular values)";
   }
 
+  for (const StartOutcome& s : result.starts)
+    if (s.usable && s.cost <= best_cost * (1 + 1e-3) + 1e-20) ++result.starts_at_best;
   for (int k = 0; k < n; ++k) {
     FittedParameter p;
     p.key = free[k];
@@ -274,7 +276,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     p.std_error = C.size() ? p.value * std::sqrt(std::max(0.0, C(k, k))) : std::numeric_limits<double>::quiet_NaN();
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
     for (const StartOutcome& s : result.starts)
-      if (s.usable) {
+      if (s.usable && s.cost <= best_cost * (1 + 1e-3) + 1e-20) {
         lo = std::min(lo, s.value[k]);
         hi = std::max(hi, s.value[k]);
       }

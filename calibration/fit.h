@@ -47,7 +47,7 @@ struct FittedParameter {
   double lower = 0, upper = 0;
   bool at_bound = false;
   bool weakly_determined = false;  // its Jacobian column is < 1e-3 of the largest
-  double start_spread = 0;         // max/min of the value over the converged starts − 1
+  double start_spread = 0;         // max/min − 1 of the value over the starts that reached the best cost
 };
 
 struct StartOutcome {
@@ -67,6 +67,7 @@ struct FitResult {
   std::vector<double> relative_rms;              // per curve: RMS(R_fem − R_yarn)/range
   std::vector<std::vector<double>> fitted;       // per curve: R_fem at the ladder
   std::vector<StartOutcome> starts;
+  int starts_at_best = 0;  // starts whose cost is within 0.1 % of the best (the others found other minima)
   double cost = 0;
   int iterations = 0;    // of the best start
   int evaluations = 0;   // curve evaluations over all starts

@@ -1,17 +1,20 @@
 // weavelab command line: `weavelab run SCENE`, `weavelab info SCENE`,
-// `weavelab work-precision SCENE`, `weavelab stability SCENE`.
+// `weavelab work-precision SCENE`, `weavelab stability SCENE`,
+// `weavelab calibrate SCENE`.
 // Exit codes: 0 success, 1 numerical failure (outcome in the summary),
 // 2 bad scene or bad arguments, 3 output could not be written.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 
+#include "experiments/driver/calibrate.h"
 #include "experiments/driver/model_factory.h"
 #include "experiments/driver/run.h"
 #include "experiments/driver/stability.h"
 #include "experiments/driver/sweep.h"
 #include "experiments/driver/work_precision.h"
 #include "integrators/integrator.h"
+#include "models/fem/fem_material.h"
 #include "models/scene/scene.h"
 
 namespace {
@@ -108,6 +111,9 @@ int main(int argc, char** argv) {
   run->add_flag("--adaptive", adaptive, "Adaptive steps with error control (overrides the scene; --dt is the first step)");
   run->add_option("--rtol", rtol, "Relative tolerance of adaptive steps (implies --adaptive; atol = 1e-3 rtol m)");
   run->add_flag("--quiet", quiet, "No progress on stderr");
+  std::string fem_params;
+  run->add_option("--fem-params", fem_params,
+                  "FEM parameter file (TOML, as written by `calibrate`); replaces the scene's parameter_file");
 
   std::string info_scene, info_model = "yarn";
   auto* info = app.add_subcommand("info", "Print DoFs, nodes, terms and pattern of a scene's model");
@@ -142,6 +148,28 @@ int main(int argc, char** argv) {
   st->add_option("--dt-max", st_dt_max, "Largest step probed [s]")->capture_default_str();
   st->add_option("--bisections", st_bisections, "Bisections on log dt")->capture_default_str();
   st->add_option("--speed-bound", st_bound, "Max node speed of a bounded run [m/s]")->capture_default_str();
+
+  wl::CalibrateConfig cal;
+  std::string cal_scene, cal_tests, cal_free, cal_out;
+  std::vector<std::string> cal_ladders, cal_validate;
+  bool cal_quiet = false;
+  auto* calibrate = app.add_subcommand(
+      "calibrate", "Fit the continuum's [fem] parameters to virtual material tests of the scene's fabric at yarn "
+                   "level (Ceres), validate on motion; writes params.toml, calibration.json, curves.csv, validation.csv");
+  calibrate->add_option("scene", cal_scene, "Scene file (TOML) whose fabric is calibrated")->required();
+  calibrate->add_option("--tests", cal_tests, "Comma-separated tests (default all): " + joined(wl::test_names()));
+  calibrate->add_option("--patch", cal.patch, "Crossings per side of the test patch (default: the scene's, at most 33)");
+  calibrate->add_option("--ladder", cal_ladders,
+                        "TEST=λ1,λ2,... load ladder of a test (strain, shear angle [rad] or curvature [1/m]); repeatable");
+  calibrate->add_option("--free", cal_free, "Comma-separated [fem] keys to fit (default: all the tests inform): " +
+                                                joined(wl::fittable_parameters()));
+  calibrate->add_option("--starts", cal.fit.starts, "Fit starts (the first guess, then seeded draws)")->capture_default_str();
+  calibrate->add_option("--seed", cal.fit.seed, "Seed of the start draws")->capture_default_str();
+  calibrate->add_option("--loss", cal.fit.loss, "Robust loss per test curve: none, huber, cauchy")->capture_default_str();
+  calibrate->add_flag("--sliding", cal.sliding, "Leave the yarn sliding coordinates free in the tests (default frozen)");
+  calibrate->add_option("--validate", cal_validate, "Scene to validate the calibrated continuum on (repeatable)");
+  calibrate->add_option("--out", cal_out, "Output folder (default results/calibration/<scene name>)");
+  calibrate->add_flag("--quiet", cal_quiet, "No progress on stderr");
 
   try {
     app.parse(argc, argv);
@@ -193,8 +221,44 @@ int main(int argc, char** argv) {
                 << c.out_dir.string() << "\n";
       return 0;
     }
+    if (*calibrate) {
+      cal.scene_path = cal_scene;
+      cal.tests = split_list(cal_tests);
+      if (calibrate->count("--tests") && cal.tests.empty()) throw std::invalid_argument("--tests: empty list");
+      cal.fit.free = split_list(cal_free);
+      for (const std::string& l : cal_ladders) {
+        const auto eq = l.find('=');
+        if (eq == std::string::npos)
+          throw std::invalid_argument("--ladder: got '" + l + "', expected TEST=λ1,λ2,... (e.g. shear=0.1,0.2,0.4)");
+        cal.ladders[l.substr(0, eq)] = split_numbers(l.substr(eq + 1), "--ladder " + l.substr(0, eq));
+      }
+      if (calibrate->count("--patch") && cal.patch < 1)
+        throw std::invalid_argument("--patch: got " + std::to_string(cal.patch) + ", expected a number of crossings");
+      for (const auto& v : cal_validate) cal.validate.emplace_back(v);
+      cal.out_dir = cal_out.empty() ? std::filesystem::path("results/calibration") / std::filesystem::path(cal_scene).stem()
+                                    : std::filesystem::path(cal_out);
+      cal.progress = !cal_quiet;
+      const wl::CalibratePlan plan = wl::plan_calibration(cal);  // every input checked; nothing written yet
+      try {
+        const wl::CalibrateSummary r = wl::run_calibration(cal, plan);
+        std::cerr << "weavelab: calibrate: yarn tests " << r.yarn_tests_s << " s, continuum tests " << r.fem_tests_s
+                  << " s, fit " << r.fit_s << " s, validation " << r.validation_s << " s; results in "
+                  << cal.out_dir.string() << "\n";
+        return r.fit.converged ? 0 : 1;
+      } catch (const std::filesystem::filesystem_error&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        std::cerr << "weavelab: calibrate: " << e.what() << "\n";
+        return 1;
+      }
+    }
     wl::Scene scene = wl::load_scene(scene_path);
+    if (!fem_params.empty()) {
+      scene.fem.parameter_file = fem_params;
+      (void)wl::fem_material(scene);  // a bad file is exit 2 before anything is written
+    }
     wl::RunOptions opt;
+    if (!fem_params.empty()) opt.overrides["fem.parameter_file"] = fem_params;
     opt.model = model;
     opt.progress = !quiet;
     if (!integrator.empty()) {
@@ -236,6 +300,9 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const wl::SceneError& e) {
     std::cerr << "weavelab: bad scene: " << e.what() << "\n";
+    return 2;
+  } catch (const wl::FemParameterError& e) {
+    std::cerr << "weavelab: bad FEM parameter file: " << e.what() << "\n";
     return 2;
   } catch (const std::invalid_argument& e) {
     std::cerr << "weavelab: " << e.what() << "\n";

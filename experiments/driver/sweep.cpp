@@ -77,6 +77,7 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
     run.trajectory.times.push_back(t_out);
     run.trajectory.positions.col(reached) = Eigen::Map<const Eigen::VectorXd>(f.points.data(), 3 * nodes);
     ++reached;
+    if (record.on_frame) record.on_frame(f);
   }
   run.trajectory.positions.conservativeResize(Eigen::NoChange, reached);
   run.cpu_s = cpu;

@@ -52,6 +52,8 @@ struct RecordOptions {
   double speed_bound = std::numeric_limits<double>::infinity();
   bool progress = false;  // a line on stderr every few seconds
   std::string label;      // prefix of the progress lines
+  // Called with every recorded output frame (after the trajectory column is stored).
+  std::function<void(const Frame&)> on_frame;
 };
 
 // Runs `scene` with `model_name` ("yarn", "fem") and `integrator_name` to the

@@ -109,13 +109,17 @@ FemMaterial read_fem_parameter_file(const std::string& path, FemMaterial base) {
   return parse_fem_parameters(ss.str(), path, base);
 }
 
-void write_fem_parameter_file(const std::string& path, const FemMaterial& m, const std::string& note) {
+void write_fem_parameter_file(const std::string& path, const FemMaterial& m,
+                              const std::vector<std::pair<std::string, std::string>>& provenance) {
   std::ostringstream out;
   out.precision(17);
   out << "# weavelab FEM parameters (models/fem/fem_material.h)\n";
   for (const Key& k : kKeys)
     if (m.*(k.field) > 0) out << k.name << " = " << m.*(k.field) << "\n";
-  if (!note.empty()) out << "\n[provenance]\nnote = " << toml::value<std::string>(note) << "\n";
+  if (!provenance.empty()) {
+    out << "\n[provenance]\n";
+    for (const auto& [key, text] : provenance) out << key << " = " << toml::value<std::string>(text) << "\n";
+  }
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp, std::ios::binary);

@@ -29,6 +29,8 @@
 #pragma once
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "models/scene/scene.h"
 
@@ -65,7 +67,9 @@ FemMaterial default_fem_material(const Scene& scene);
 FemMaterial read_fem_parameter_file(const std::string& path, FemMaterial base);
 FemMaterial parse_fem_parameters(const std::string& toml_text, const std::string& source_name, FemMaterial base);
 // Writes all values in the parameter-file format (atomic: temporary name, then rename).
-void write_fem_parameter_file(const std::string& path, const FemMaterial& m, const std::string& provenance_note = "");
+// `provenance`: (key, text) pairs written as strings into the [provenance] table.
+void write_fem_parameter_file(const std::string& path, const FemMaterial& m,
+                              const std::vector<std::pair<std::string, std::string>>& provenance = {});
 // Steps 1–3.
 FemMaterial fem_material(const Scene& scene);
 

@@ -102,3 +102,57 @@ TEST_F(Cli, ShortRunWritesFramesMetricsAndSummary) {
 }
 
 }  // namespace
+
+// ---- calibrate and --fem-params ---------------------------------------------
+
+const std::string kHangingWind = WEAVELAB_SOURCE_DIR "/experiments/scenes/hanging_wind.toml";
+
+TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
+  const fs::path out = dir_ / "cal";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--tests uniaxial-warp,twist", "unknown test 'twist'"},
+      {"--ladder shear=", "--ladder shear: empty list"},
+      {"--ladder shear=0.1,-0.2", "expected a comma-separated list of numbers > 0"},
+      {"--ladder shear=0.2,0.1", "expected increasing finite loads > 0"},
+      {"--ladder shear=0.1", "need at least 2 loads"},
+      {"--tests shear --ladder biaxial=0.01,0.02", "the test is not among --tests"},
+      {"--patch 4", "too small for the plain pattern: need at least 6"},
+      {"--free shear_N_per_m,color", "unknown FEM parameter 'color'"},
+      {"--starts 0", "--starts: need at least 1"},
+      {"--validate missing.toml", "missing.toml"},
+  };
+  for (const auto& [args, fragment] : cases) {
+    Result r = run_cli("calibrate '" + kHangingWind + "' " + args + " --out '" + out.string() + "'", dir_);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(fragment), std::string::npos) << args << ": missing '" << fragment << "' in " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+}
+
+TEST_F(Cli, CalibrateWritesAParameterFileThatRunReads) {
+  const fs::path out = dir_ / "cal";
+  Result r = run_cli("calibrate '" + kHangingWind + "' --tests uniaxial-warp,bending-warp --patch 7 --starts 1 --quiet"
+                     " --out '" + out.string() + "'", dir_);
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"params.toml", "calibration.json", "curves.csv"}) EXPECT_TRUE(fs::exists(out / f)) << f;
+  const fs::path run = dir_ / "run";
+  r = run_cli("run '" + kHangingWind + "' --model fem --duration 0.01 --quiet --fem-params '" +
+                  (out / "params.toml").string() + "' --out '" + run.string() + "'", dir_);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(run / "summary.json");
+  std::stringstream summary;
+  summary << in.rdbuf();
+  EXPECT_NE(summary.str().find("fem.parameter_file"), std::string::npos);
+}
+
+TEST_F(Cli, RunRejectsABadFemParameterFile) {
+  const fs::path params = dir_ / "params.toml";
+  std::ofstream(params) << "warp_stretch_N_per_m = 300.0\ncolour = 2.0\n";
+  const fs::path out = dir_ / "run";
+  Result r = run_cli("run '" + kHangingWind + "' --model fem --fem-params '" + params.string() + "' --out '" +
+                         out.string() + "'",
+                     dir_);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find(params.string() + ":2: key 'colour'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}

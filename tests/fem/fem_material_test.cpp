@@ -49,7 +49,7 @@ TEST(FemMaterial, ParameterFileOverridesAndRoundTrips) {
 
   FemMaterial all = default_fem_material(test::fem_scene(3, 3));
   const std::string path = (std::filesystem::temp_directory_path() / ("wl_fem_params_" + std::to_string(::getpid()) + ".toml")).string();
-  write_fem_parameter_file(path, all, "unit test");
+  write_fem_parameter_file(path, all, {{"note", "unit test"}});
   const FemMaterial back = read_fem_parameter_file(path, FemMaterial{});
   std::remove(path.c_str());
   EXPECT_DOUBLE_EQ(back.warp_stretch_N_per_m, all.warp_stretch_N_per_m);

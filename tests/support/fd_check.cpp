@@ -75,4 +75,34 @@ FdReport check_element(const Term& term, int e, const std::vector<LocalState>& s
   return rep;
 }
 
+FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(double)>& make, double p, int k,
+                                    int e, const std::vector<LocalState>& states, const FdOptions& opt) {
+  FdReport rep;
+  const double h = 1e-4 * p;  // relative step: truncation O(1e-8), roundoff well below
+  const std::unique_ptr<Term> term = make(p), hi = make(p + h), lo = make(p - h);
+  const int n = term->stencil_size();
+  double largest = 0.0;
+  for (size_t s = 0; s < states.size(); ++s) {
+    const auto& st = states[s];
+    Eigen::VectorXd exact = Eigen::VectorXd::Zero(n);
+    term->parameter_derivative(e, k, st.q.data(), st.v.data(), exact.data());
+    const Eigen::VectorXd fd = (evaluate(*hi, e, st.q, st.v).f - evaluate(*lo, e, st.q, st.v).f) / (2 * h);
+    const double err = rel_error(exact, fd, opt.floor);
+    largest = std::max(largest, exact.norm());
+    rep.force_error = std::max(rep.force_error, err);
+    if (err > opt.rtol) {
+      rep.ok = false;
+      std::ostringstream why;
+      why << term->name() << " parameter " << term->parameter_keys().at(k) << " element " << e << " state " << s
+          << ": df/dp relative error " << err << " (|analytic| " << exact.norm() << ", |fd| " << fd.norm() << ")\n";
+      rep.detail += why.str();
+    }
+  }
+  if (!(largest > opt.floor)) {
+    rep.ok = false;
+    rep.detail += term->name() + ": df/dp is zero at every state\n";
+  }
+  return rep;
+}
+
 }  // namespace wl::test

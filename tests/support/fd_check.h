@@ -5,6 +5,8 @@
 //   ∂f/∂v  against differences of force in v (terms with velocity Jacobians).
 // The term must already be prepared (auxiliary quantities frozen).
 #pragma once
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,5 +34,12 @@ struct FdReport {
 
 FdReport check_element(const Term& term, int element, const std::vector<LocalState>& states,
                        const FdOptions& opt = {});
+
+// Parameter derivative (Term::parameter_derivative) of the term's k-th parameter
+// against central differences of the force in p, with a relative step:
+// `make(p)` builds the term (element `element` prepared) at parameter value p.
+// The derivative must not be zero at every state (a check of nothing).
+FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(double)>& make, double p, int k,
+                                    int element, const std::vector<LocalState>& states, const FdOptions& opt = {});
 
 }  // namespace wl::test

@@ -1,0 +1,382 @@
+#include "experiments/driver/calibrate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#include "experiments/driver/experiment_meta.h"
+#include "experiments/driver/sweep.h"
+#include "experiments/output/atomic_file.h"
+#include "experiments/output/csv_table.h"
+#include "experiments/output/json_writer.h"
+#include "models/fem/fem_model.h"
+
+namespace wl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// The yarn crossings of one output frame: positions and material coordinates (u, v).
+struct CrossingFrame {
+  Eigen::MatrixXd x;  // n × 3
+  std::vector<Vec2> uv;
+};
+
+struct VariantRun {
+  std::string name;
+  std::vector<double> times, rms, max;
+  RecordedRun run;
+};
+
+// Yarn-vs-continuum distance per frame, at each crossing's material point
+// (the continuum surface interpolated in the triangle that holds (u, v)).
+VariantRun run_continuum_variant(const std::string& name, const Scene& scene, const std::vector<CrossingFrame>& yarn,
+                                 const IntegratorOptions& iopt, bool progress) {
+  VariantRun v;
+  v.name = name;
+  const FemModel geometry(scene);
+  size_t k = 0;
+  RecordOptions rec;
+  rec.progress = progress;
+  rec.label = name;
+  rec.on_frame = [&](const Frame& f) {
+    if (k >= yarn.size()) return;
+    Vec q(3 * f.points.rows());
+    for (Eigen::Index i = 0; i < f.points.rows(); ++i) q.segment<3>(3 * i) = f.points.row(i).transpose();
+    double sum = 0, mx = 0;
+    const CrossingFrame& y = yarn[k];
+    for (Eigen::Index n = 0; n < y.x.rows(); ++n) {
+      Vec3 s;
+      if (!geometry.surface_point(q, y.uv[n], &s)) continue;  // a crossing slid out of the mesh: not compared
+      const double d = (s - y.x.row(n).transpose()).norm();
+      sum += d * d;
+      mx = std::max(mx, d);
+    }
+    v.times.push_back(f.time);
+    v.rms.push_back(std::sqrt(sum / y.x.rows()));
+    v.max.push_back(mx);
+    ++k;
+  };
+  v.run = run_recorded(scene, "fem", scene.integrator, iopt, rec);
+  return v;
+}
+
+Scene with_material(Scene s, const FemMaterial& m) {
+  s.fem.parameter_file.clear();
+  s.fem.areal_density_kg_per_m2 = m.areal_density_kg_per_m2;
+  s.fem.warp_stretch_N_per_m = m.warp_stretch_N_per_m;
+  s.fem.weft_stretch_N_per_m = m.weft_stretch_N_per_m;
+  s.fem.shear_N_per_m = m.shear_N_per_m;
+  s.fem.shear_lock_angle_rad = m.shear_lock_angle_rad;
+  s.fem.shear_lock_exponent = m.shear_lock_exponent;
+  s.fem.warp_bending_N_m = m.warp_bending_N_m;
+  s.fem.weft_bending_N_m = m.weft_bending_N_m;
+  return s;
+}
+
+double mean(const std::vector<double>& x) { return x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / x.size(); }
+double maximum(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end()); }
+double cpu_per_step(const RecordedRun& r) { return r.stats.steps > 0 ? r.cpu_s / r.stats.steps : 0.0; }
+
+std::string fnv1a(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+}  // namespace
+
+double matched_areal_density(const Scene& s) {
+  double mass = 0.0;
+  for (int j = 0; j < s.warps; ++j) mass += s.warp_type(j).density_kg_per_m * (s.wefts - 1) * s.spacing_m;
+  for (int i = 0; i < s.wefts; ++i) mass += s.weft_type(i).density_kg_per_m * (s.warps - 1) * s.spacing_m;
+  return mass / ((s.wefts - 1) * (s.warps - 1) * s.spacing_m * s.spacing_m);
+}
+
+CalibratePlan plan_calibration(const CalibrateConfig& c) {
+  CalibratePlan p;
+  p.scene = load_scene(c.scene_path.string());
+  p.scene_text = read_text_file(c.scene_path);
+  const int size = std::min(p.scene.warps, p.scene.wefts);
+  const int patch = c.patch > 0 ? c.patch : std::max(std::min(size, 33), minimum_patch(p.scene));
+  p.test_scene = material_test_scene(p.scene, patch, c.sliding);  // too small: invalid_argument
+  std::vector<std::string> names = c.tests.empty() ? test_names() : c.tests;
+  for (const std::string& name : names) {
+    const TestKind kind = test_kind(name);  // unknown: invalid_argument
+    for (const TestSpec& t : p.tests)
+      if (t.kind == kind) throw std::invalid_argument("--tests: '" + name + "' is listed twice");
+    TestSpec t{kind, default_ladder(kind, patch, p.scene.spacing_m)};
+    if (auto it = c.ladders.find(name); it != c.ladders.end()) t.ladder = it->second;
+    if (t.ladder.size() < 2) throw std::invalid_argument("--ladder " + name + ": need at least 2 loads");
+    for (size_t i = 0; i < t.ladder.size(); ++i)
+      if (!(t.ladder[i] > 0) || !std::isfinite(t.ladder[i]) || (i > 0 && !(t.ladder[i] > t.ladder[i - 1])))
+        throw std::invalid_argument("--ladder " + name + ": got " + std::to_string(t.ladder[i]) +
+                                    " at position " + std::to_string(i + 1) +
+                                    ", expected increasing finite loads > 0 [" + load_unit(kind) + "]");
+    if (kind == TestKind::shear && t.ladder.back() >= 1.5)
+      throw std::invalid_argument("--ladder shear: shear angles must stay below 1.5 rad, got " +
+                                  std::to_string(t.ladder.back()));
+    p.tests.push_back(t);
+  }
+  for (const auto& [name, ladder] : c.ladders) {
+    const TestKind kind = test_kind(name);  // unknown: invalid_argument
+    if (std::none_of(p.tests.begin(), p.tests.end(), [&](const TestSpec& t) { return t.kind == kind; }))
+      throw std::invalid_argument("--ladder " + name + ": the test is not among --tests");
+  }
+  FemMaterial probe;
+  for (const std::string& key : c.fit.free) (void)material_value(probe, key);  // unknown: invalid_argument
+  if (c.fit.starts < 1) throw std::invalid_argument("--starts: need at least 1, got " + std::to_string(c.fit.starts));
+  (void)fem_material(p.scene);  // a bad parameter file is reported before anything runs
+  for (const auto& v : c.validate) {
+    p.validation_scenes.push_back(load_scene(v.string()));
+    p.validation_texts.push_back(read_text_file(v));
+  }
+  return p;
+}
+
+CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& p) {
+  CalibrateSummary out;
+  const int patch = p.test_scene.warps;
+  if (c.progress)
+    std::fprintf(stderr, "calibrate: %zu tests on a %d x %d patch of %s\n", p.tests.size(), patch, patch,
+                 c.scene_path.string().c_str());
+
+  // 1. Yarn level.
+  auto t0 = Clock::now();
+  std::vector<FitCurve> curves;
+  for (const TestSpec& t : p.tests) {
+    const ResponseCurve r = run_yarn_test(p.test_scene, t);
+    if (c.progress)
+      std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(t.kind).c_str(), r.points.size(),
+                   t.ladder.size(), r.complete ? "" : ", stopped:", r.message.c_str());
+    if (r.points.size() < 2)
+      throw std::runtime_error("yarn-level test did not converge: " + r.message);
+    FitCurve fc{{t.kind, {}}, {}};
+    for (const ResponsePoint& pt : r.points) {
+      fc.test.ladder.push_back(pt.load);
+      fc.target.push_back(pt.response);
+    }
+    curves.push_back(fc);
+  }
+  out.yarn_tests_s = seconds_since(t0);
+
+  // 2. Continuum tests at the first guess (also the time of one evaluation of every test).
+  const FemMaterial guess = fem_material(p.scene);
+  const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
+    return run_fem_test(p.test_scene, m, t, keys);
+  };
+  t0 = Clock::now();
+  std::vector<ResponseCurve> first;
+  for (const FitCurve& fc : curves) first.push_back(continuum(guess, fc.test, {}));
+  out.fem_tests_s = seconds_since(t0);
+
+  // 3. Fit.
+  t0 = Clock::now();
+  FitOptions fo = c.fit;
+  fo.progress = c.progress;
+  out.fit = fit_continuum(curves, guess, continuum, fo);
+  out.fit_s = seconds_since(t0);
+  FemMaterial calibrated = out.fit.material;
+  calibrated.areal_density_kg_per_m2 = matched_areal_density(p.scene);
+  if (c.progress) {
+    std::fprintf(stderr, "  fit: %s (cost %.4g, %d iterations, %d curve evaluations, %.1f s)\n",
+                 out.fit.converged ? "converged" : "NOT converged", out.fit.cost, out.fit.iterations,
+                 out.fit.evaluations, out.fit_s);
+    for (size_t i = 0; i < curves.size(); ++i)
+      std::fprintf(stderr, "    %-14s residual %.3g %% of the curve's range\n", test_name(curves[i].test.kind).c_str(),
+                   100 * out.fit.relative_rms[i]);
+  }
+
+  std::filesystem::create_directories(c.out_dir);
+  // curves.csv
+  {
+    CsvTable csv(c.out_dir / "curves.csv",
+                 {"test", "load", "load_unit", "yarn", "fitted", "first_guess", "response_unit"});
+    for (size_t i = 0; i < curves.size(); ++i)
+      for (size_t k = 0; k < curves[i].target.size(); ++k) {
+        const TestKind kind = curves[i].test.kind;
+        const double fg = k < first[i].points.size() ? first[i].points[k].response : NAN;
+        csv.row({test_name(kind), csv_number(curves[i].test.ladder[k]), load_unit(kind),
+                 csv_number(curves[i].target[k]), csv_number(out.fit.fitted[i][k]), csv_number(fg),
+                 response_unit(kind)});
+      }
+    csv.commit();
+  }
+
+  // 4. Validation on motion.
+  Json validation = Json::array();
+  t0 = Clock::now();
+  std::unique_ptr<CsvTable> vcsv;
+  if (!p.validation_scenes.empty())
+    vcsv = std::make_unique<CsvTable>(c.out_dir / "validation.csv",
+                                      std::vector<std::string>{"scene", "variant", "time_s", "rms_m", "max_m"});
+  for (size_t s = 0; s < p.validation_scenes.size(); ++s) {
+    const Scene& vs = p.validation_scenes[s];
+    const std::string label = c.validate[s].stem().string();
+    IntegratorOptions iopt;
+    iopt.dt = vs.dt_s;
+    iopt.adaptive = vs.adaptive;
+    iopt.rtol = vs.rtol;
+    iopt.atol = vs.atol;
+    std::vector<CrossingFrame> yarn;
+    RecordOptions rec;
+    rec.progress = c.progress;
+    rec.label = label + " yarn";
+    rec.on_frame = [&](const Frame& f) {
+      CrossingFrame cf;
+      cf.x = f.points;
+      const DataArray *u = nullptr, *v = nullptr;
+      for (const DataArray& a : f.point_data) {
+        if (a.name == "u") u = &a;
+        if (a.name == "v") v = &a;
+      }
+      for (Eigen::Index n = 0; n < f.points.rows(); ++n) cf.uv.emplace_back(u->values[n], v->values[n]);
+      yarn.push_back(std::move(cf));
+    };
+    if (c.progress) std::fprintf(stderr, "  validation %s: yarn level\n", label.c_str());
+    const RecordedRun yr = run_recorded(vs, "yarn", vs.integrator, iopt, rec);
+    if (yr.result.outcome != Outcome::ok)
+      throw std::runtime_error("validation " + label + ": the yarn-level run ended '" + to_string(yr.result.outcome) +
+                               "': " + yr.result.message);
+    FemMaterial stiff_only = calibrated;
+    stiff_only.areal_density_kg_per_m2 = default_fem_material(vs).areal_density_kg_per_m2;
+    FemMaterial full = calibrated;
+    full.areal_density_kg_per_m2 = matched_areal_density(vs);
+    const std::vector<std::pair<std::string, FemMaterial>> variants{
+        {"first_guess", default_fem_material(vs)}, {"calibrated_stiffness", stiff_only}, {"calibrated", full}};
+    Json entry = Json::object();
+    entry.set("scene", c.validate[s].string());
+    entry.set("scene_hash", fnv1a(p.validation_texts[s]));
+    entry.set("frames", static_cast<int>(yarn.size()));
+    entry.set("yarn_cpu_s_per_step", cpu_per_step(yr));
+    Json vars = Json::array();
+    for (const auto& [name, m] : variants) {
+      if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
+      const VariantRun vr = run_continuum_variant(name, with_material(vs, m), yarn, iopt, c.progress);
+      for (size_t k = 0; k < vr.times.size(); ++k)
+        vcsv->row({label, name, csv_number(vr.times[k]), csv_number(vr.rms[k]), csv_number(vr.max[k])});
+      Json j = Json::object();
+      j.set("variant", name);
+      j.set("outcome", to_string(vr.run.result.outcome));
+      j.set("areal_density_kg_per_m2", m.areal_density_kg_per_m2);
+      j.set("mean_rms_m", mean(vr.rms));
+      j.set("max_rms_m", maximum(vr.rms));
+      j.set("max_m", maximum(vr.max));
+      j.set("cpu_s_per_step", cpu_per_step(vr.run));
+      j.set("step_time_ratio_to_yarn", cpu_per_step(yr) > 0 ? cpu_per_step(vr.run) / cpu_per_step(yr) : NAN);
+      vars.push(std::move(j));
+      if (c.progress)
+        std::fprintf(stderr, "    %s: RMS distance mean %.3g mm, worst frame %.3g mm, max %.3g mm\n", name.c_str(),
+                     1e3 * mean(vr.rms), 1e3 * maximum(vr.rms), 1e3 * maximum(vr.max));
+    }
+    entry.set("variants", std::move(vars));
+    validation.push(std::move(entry));
+  }
+  if (vcsv) vcsv->commit();
+  out.validation_s = seconds_since(t0);
+
+  // params.toml with provenance
+  double worst = 0;
+  for (double r : out.fit.relative_rms) worst = std::max(worst, r);
+  std::ostringstream rms;
+  for (size_t i = 0; i < curves.size(); ++i)
+    rms << (i ? ", " : "") << test_name(curves[i].test.kind) << " " << out.fit.relative_rms[i];
+  write_fem_parameter_file((c.out_dir / "params.toml").string(), calibrated,
+                           {{"source_scene", c.scene_path.string()},
+                            {"source_scene_hash", fnv1a(p.scene_text)},
+                            {"git_revision", git_revision()},
+                            {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
+                            {"residual_rms_relative", rms.str()},
+                            {"areal_density", "total yarn mass of the scene over the crossing grid's area"},
+                            {"created", utc_now()}});
+
+  // calibration.json
+  Json j = Json::object();
+  j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
+  j.set("scene_hash", fnv1a(p.scene_text));
+  j.set("patch", patch);
+  j.set("sliding", c.sliding);
+  Json params = Json::array();
+  for (const FittedParameter& fp : out.fit.parameters) {
+    Json e = Json::object();
+    e.set("key", fp.key);
+    e.set("start", fp.start);
+    e.set("value", fp.value);
+    e.set("std_error", fp.std_error);
+    e.set("at_bound", fp.at_bound);
+    e.set("lower", fp.lower);
+    e.set("upper", fp.upper);
+    e.set("weakly_determined", fp.weakly_determined);
+    e.set("start_spread", fp.start_spread);
+    params.push(std::move(e));
+  }
+  Json density = Json::object();
+  density.set("key", "areal_density_kg_per_m2");
+  density.set("start", guess.areal_density_kg_per_m2);
+  density.set("value", calibrated.areal_density_kg_per_m2);
+  density.set("std_error", nullptr);
+  density.set("at_bound", false);
+  density.set("note", "not fitted: static tests cannot see mass; set so that the continuum carries the yarn level's total mass");
+  params.push(std::move(density));
+  j.set("parameters", std::move(params));
+  Json corr = Json::array();
+  for (const auto& row : out.fit.correlation) corr.push(Json(row));
+  j.set("correlation", std::move(corr));
+  j.set("covariance_note", out.fit.covariance_message.empty()
+                               ? "ceres::Covariance (DENSE_SVD) of log-parameters times the residual variance"
+                               : out.fit.covariance_message);
+  j.set("singular_values", Json(out.fit.singular_values));
+  Json tests = Json::array();
+  for (size_t i = 0; i < curves.size(); ++i) {
+    Json e = Json::object();
+    e.set("test", test_name(curves[i].test.kind));
+    e.set("points", static_cast<int>(curves[i].target.size()));
+    e.set("residual_rms_relative", out.fit.relative_rms[i]);
+    e.set("load_unit", load_unit(curves[i].test.kind));
+    e.set("response_unit", response_unit(curves[i].test.kind));
+    tests.push(std::move(e));
+  }
+  j.set("tests", std::move(tests));
+  Json starts = Json::array();
+  for (const StartOutcome& s : out.fit.starts) {
+    Json e = Json::object();
+    e.set("start", Json(s.start));
+    e.set("value", Json(s.value));
+    e.set("cost", s.cost);
+    e.set("iterations", s.iterations);
+    e.set("usable", s.usable);
+    starts.push(std::move(e));
+  }
+  j.set("starts", std::move(starts));
+  j.set("starts_at_best", out.fit.starts_at_best);
+  Json fit = Json::object();
+  fit.set("converged", out.fit.converged);
+  fit.set("message", out.fit.message);
+  fit.set("cost", out.fit.cost);
+  fit.set("iterations", out.fit.iterations);
+  fit.set("curve_evaluations", out.fit.evaluations);
+  fit.set("loss", c.fit.loss);
+  fit.set("seed", static_cast<int>(c.fit.seed));
+  j.set("fit", std::move(fit));
+  Json timing = Json::object();
+  timing.set("yarn_tests_wall_s", out.yarn_tests_s);
+  timing.set("fem_tests_wall_s", out.fem_tests_s);
+  timing.set("fit_wall_s", out.fit_s);
+  timing.set("fit_cpu_s", out.fit.cpu_s);
+  timing.set("validation_wall_s", out.validation_s);
+  j.set("timings", std::move(timing));
+  j.set("validation", std::move(validation));
+  j.set("created", utc_now());
+  add_provenance(j);
+  write_file_atomically(c.out_dir / "calibration.json", j.dump());
+  return out;
+}
+
+}  // namespace wl

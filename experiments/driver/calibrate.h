@@ -1,0 +1,59 @@
+// `weavelab calibrate`: the continuum fitted to the yarn level of a scene's
+// fabric through virtual material tests (calibration/, docs/calibration.md),
+// then validated on motion it was not fitted to. Writes into the output folder
+//   params.toml        the FEM parameter file, with provenance
+//   calibration.json   parameters (value, std_error, at_bound), correlations,
+//                      singular values, residual per test, starts, timings,
+//                      validation summary
+//   curves.csv         yarn, fitted and first-guess response per test and load
+//   validation.csv     per validation scene, variant and frame: RMS and max
+//                      distance between the yarn crossings and the continuum
+// (experiments/plot_calibration.py draws the charts from these).
+#pragma once
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "calibration/fit.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+struct CalibrateConfig {
+  std::filesystem::path scene_path;
+  std::vector<std::string> tests;                      // names; empty = all
+  int patch = 0;                                       // crossings per side; 0 = the scene's size, at most 33
+  std::map<std::string, std::vector<double>> ladders;  // per test name; absent = default_ladder()
+  bool sliding = false;                                // sliding coordinates free in the tests
+  FitOptions fit;
+  std::vector<std::filesystem::path> validate;  // scenes to validate on
+  std::filesystem::path out_dir;
+  bool progress = true;
+};
+
+// Checks the configuration and every input file before anything runs or is
+// written: throws SceneError, FemParameterError or std::invalid_argument.
+struct CalibratePlan {
+  Scene scene;
+  std::string scene_text;
+  Scene test_scene;
+  std::vector<TestSpec> tests;
+  std::vector<Scene> validation_scenes;
+  std::vector<std::string> validation_texts;
+};
+CalibratePlan plan_calibration(const CalibrateConfig& config);
+
+struct CalibrateSummary {
+  FitResult fit;
+  double yarn_tests_s = 0, fem_tests_s = 0, fit_s = 0, validation_s = 0;  // wall
+};
+// Runs the plan; a yarn-level test that does not converge far enough to fit
+// is a std::runtime_error naming the test and the rung.
+CalibrateSummary run_calibration(const CalibrateConfig& config, const CalibratePlan& plan);
+
+// Areal density [kg/m²] at which the continuum on the crossing grid carries the
+// yarn level's total mass: Σ_yarns ρ·(length) / ((wefts−1)(warps−1)L²).
+double matched_areal_density(const Scene& scene);
+
+}  // namespace wl
