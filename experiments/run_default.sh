@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The default experiment: the published hanging cloth in the wind (physics.md
-# §5.1), simulated at yarn level and as a continuum (triangle FEM, physics.md
+# The default experiment: the published hanging cloth in the wind (docs/models.md
+# §8), simulated at yarn level and as a continuum (triangle FEM, docs/models.md
 # §6) with backward Euler (be-linear, 500 steps each), then compared frame by
 # frame. Results under results/hanging_wind/:
 #   yarn/, fem/            the two runs (frames, metrics.csv, summary.json)

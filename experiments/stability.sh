@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The stability experiment (issue 4 item 3): the largest bounded fixed step per
+# The stability experiment: the largest bounded fixed step per
 # integrator × model × stretch-modulus multiplier (1, 10, 100, 1000) on the 9×9
 # hanging cloth, with results under results/stability/ (stability.csv,
 # stability_probes.csv, .json with scene, parameters, git revision and machine;

@@ -1,4 +1,4 @@
-"""Reading weavelab run folders (design.md "Data flow": results/<name>/).
+"""Reading weavelab run folders (docs/design.md §8: results/<name>/).
 
 A run folder holds
   summary.json        run summary (scene, model, integrator, statistics, git, machine)

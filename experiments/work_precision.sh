@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The work-precision experiment (issue 4 item 3): error against CPU time for every
+# The work-precision experiment: error against CPU time for every
 # integrator on the hanging cloth, yarn and FEM models, with results under
 # results/work_precision/ (work_precision.csv, .json with scene, parameters, git
 # revision and machine; work_precision.png/.svg; slopes.csv). The IDA reference

@@ -1,9 +1,9 @@
-// In-house backward Euler (physics.md §4.1), two variants:
+// In-house backward Euler (docs/models.md §7.2), two variants:
 //   be-linear: one linearized solve per step,
 //     (M − h∂f/∂v − h²∂f/∂q) Δv = h (f + h ∂f/∂q v₀),  v₁ = v₀ + Δv,  q₁ = q₀ + h v₁;
 //   be-newton: Newton on  G(v₁) = M(q₀)(v₁ − v₀) − h f(q₀ + h v₁, v₁) = 0
 //     with a backtracking line search on ‖G‖.
-// M is taken at the start of the step in both (seed 003 eq. 2). The sparse
+// M is taken at the start of the step in both (Gong et al. 2022 eq. (2)). The sparse
 // factorization reuses one symbolic analysis for the whole run.
 #pragma once
 #include <memory>

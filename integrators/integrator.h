@@ -1,5 +1,5 @@
 // The Integrator interface: advances a Model through time knowing nothing of
-// yarns or triangles (design.md "Core abstractions"). Every integrator reports
+// yarns or triangles (docs/design.md §6.1). Every integrator reports
 // the same statistics and ends in a structured outcome instead of aborting.
 #pragma once
 #include <functional>

@@ -2,7 +2,7 @@
 // The symbolic analysis is done once per pattern (at the first factorize, on
 // real values); every later factorize() reuses it.
 // Backends: UMFPACK (general, the default since the yarn step matrix is not
-// symmetric, physics.md §4.1) and CHOLMOD (symmetric positive definite).
+// symmetric, docs/models.md §7.6) and CHOLMOD (symmetric positive definite).
 #pragma once
 #include <memory>
 #include <span>

@@ -1,4 +1,4 @@
-// RAII owners for SUNDIALS 6 objects (design.md: SUNDIALS handles live behind
+// RAII owners for SUNDIALS 6 objects (docs/design.md §6.2: SUNDIALS handles live behind
 // RAII owners; no void* casts outside the adapters). Every object is created
 // from one SUNContext; members must be declared context first, integrator
 // memory last, so that destruction runs in the reverse (safe) order.

@@ -1,6 +1,6 @@
 // Benchmark (not a test): FEM and yarn be-linear steps on the same scene, and
-// the FEM step against its own factor+solve, in one run (issue 3, "Done when";
-// design.md "Performance stance"). See compare_models.h for the command line.
+// the FEM step against its own factor+solve, in one run (target: at most 2×;
+// docs/design.md §11). See compare_models.h for the command line.
 //
 // Per timed step k of a model: the whole BackwardEuler::step (assembly of
 // f, ∂f/∂q, ∂f/∂v, M; forming M − h∂f/∂v − h²∂f/∂q; factorize; solve; state
@@ -118,7 +118,7 @@ int compare_models_main(int argc, char** argv) {
   const Figures& yarn = rows[1];
   const double ratio_wall = fem.step.wall_ms() / fem.factor_solve.wall_ms();
   const double ratio_cpu = fem.step.cpu_ms() / fem.factor_solve.cpu_ms();
-  std::printf("FEM step / its own factor+solve: %.2f wall, %.2f CPU (issue 3: at most 2) -> %s\n", ratio_wall,
+  std::printf("FEM step / its own factor+solve: %.2f wall, %.2f CPU (target: at most 2) -> %s\n", ratio_wall,
               ratio_cpu, std::max(ratio_wall, ratio_cpu) <= 2.0 ? "ok" : "ABOVE 2");
   std::printf("yarn step / FEM step: %.1f wall, %.1f CPU\n", yarn.step.wall_ms() / fem.step.wall_ms(),
               yarn.step.cpu_ms() / fem.step.cpu_ms());

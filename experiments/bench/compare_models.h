@@ -1,6 +1,6 @@
 // `weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]`:
 // the FEM and yarn backward-Euler (be-linear) step times on one scene, and the
-// FEM step against its own factor+solve (issue 3: at most 2×), in one run.
+// FEM step against its own factor+solve (target: at most 2×), in one run.
 #pragma once
 
 namespace wl::bench {

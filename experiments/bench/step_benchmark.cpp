@@ -1,5 +1,5 @@
 // Benchmark (not a test): the backward-Euler step against the factor+solve of
-// the same step matrix, measured in one run (design.md "Performance stance").
+// the same step matrix, measured in one run (docs/design.md §11).
 //   weavelab_bench [--model yarn|fem] [--integrator be-linear] [scene ...]
 // Default scenes: the hanging cloth at 17×17, 65×65 and 129×129.
 //   weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]

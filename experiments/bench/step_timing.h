@@ -1,7 +1,7 @@
 // One measurement shared by the benchmarks: a model's backward-Euler steps,
 // each followed by the factor+solve of that very step matrix (a second solver,
 // symbolic analysis untimed) and the assembly alone, as wall and process-CPU
-// medians (design.md "Performance stance": ratios measured in one run).
+// medians (docs/design.md §11: ratios measured in one run).
 #pragma once
 #include <chrono>
 #include <string>

@@ -1,5 +1,5 @@
 // The run summary JSON: scene, model, integrator, options, statistics,
-// outcome, git revision and machine (design.md "Conventions", Output).
+// outcome, git revision and machine (docs/design.md §9).
 #pragma once
 #include <filesystem>
 

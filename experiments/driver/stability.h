@@ -1,4 +1,4 @@
-// The stability experiment (issue 4 item 3): per integrator at fixed steps ×
+// The stability experiment: per integrator at fixed steps ×
 // model × stretch-modulus multiplier, the largest step that stays bounded over
 // the scene's duration (bisection on log dt, experiments/driver/sweep.h) and
 // the failure mode just above it. "Bounded" = outcome ok and max node speed

@@ -1,4 +1,4 @@
-// In-process runs for the integrator experiments (issue 4 items 2 and 3): a
+// In-process runs for the integrator experiments: a
 // scene run with one model and integrator, recording node positions at the
 // output times (no VTU output); the error of a run against a reference
 // trajectory; the reference itself (IDA at the tightest tolerance that

@@ -1,4 +1,4 @@
-// The work-precision experiment (issue 4 item 3): per model and integrator a
+// The work-precision experiment: per model and integrator a
 // ladder of tolerances (error-controlled methods) or step sizes (fixed-step
 // methods), each run's error against the cached IDA reference
 // (experiments/driver/sweep.h) and its CPU time. Writes into out_dir:

@@ -1,4 +1,4 @@
-// Files that never appear torn (design.md "Conventions", Output): content is
+// Files that never appear torn (docs/design.md §9): content is
 // written under a temporary name in the same folder and renamed into place.
 #pragma once
 #include <cstdio>

@@ -1,4 +1,4 @@
-// A tiny JSON builder for run summaries (design.md "Conventions", Output):
+// A tiny JSON builder for run summaries (docs/design.md §9):
 // objects (keys kept in insertion order), arrays, strings, numbers, bools and
 // null, printed with two-space indentation. Plus the machine and the git
 // revision that every run summary records.

@@ -1,5 +1,5 @@
 // One output frame as a VTK XML UnstructuredGrid (.vtu), ASCII, full double
-// precision, readable by meshio and ParaView (design.md "Conventions", Output).
+// precision, readable by meshio and ParaView (docs/design.md §9).
 #pragma once
 #include <string>
 

@@ -29,7 +29,7 @@ WindTerm::WindTerm(const Vec3& wind_velocity, double air_density, double drag)
 void WindTerm::add(const std::array<int, 9>& stencil) { stencils_.push_back(stencil); }
 
 // With N = (x1−x0)×(x2−x0) = 2a n_f and ψ(s) = ρ_w|s|s − d_w s, the force is
-//   F_w = d_w a v_rel + a ψ(v_n) n_f                         [derived from §3.9]
+//   F_w = d_w a v_rel + a ψ(v_n) n_f                         [docs/models.md §3.9]
 // so, with P = I − n_f n_fᵀ, da = ½ n_fᵀ dN and dn_f = P dN / (2a):
 //   ∂F_w/∂N = ½ (d_w v_rel + ψ n_f) n_fᵀ + ½ ψ′ n_f v_relᵀ P + ½ ψ P,   ψ′ = 2ρ_w|s| − d_w,
 //   ∂N/∂x1 = −[e2]×, ∂N/∂x2 = [e1]×, ∂N/∂x0 = [e2]× − [e1]×  (e1 = x1−x0, e2 = x2−x0),

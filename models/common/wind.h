@@ -1,5 +1,5 @@
-// Wind and air drag on one triangle, physics.md §3.9, seed 003 (68)–(69) as
-// corrected by I-40 and Appendix A (relative wind, area on the drag term):
+// Wind and air drag on one triangle, docs/models.md §3.9, Gong et al. 2022 eqs. (68)–(69)
+// as corrected in docs/models.md §4.19 (relative wind, area on the drag term):
 //   v_rel = v_w − (ẋ0 + ẋ1 + ẋ2)/3,  v_n = n_f·v_rel,  v_t = v_rel − v_n n_f
 //   F_w = ρ_w a |v_n| v_n n_f + d_w a v_t,   each node gets F_w / 3.
 // a is the triangle area and n_f its unit normal; F_w does not depend on the
@@ -17,8 +17,8 @@ namespace wl {
 
 class WindTerm : public StencilTerm<9> {
  public:
-  // wind_velocity v_w (m/s), air_density ρ_w (kg/m³; 003 uses 2), drag d_w
-  // (N·s/m³, tangential drag per area; 003 uses 0.5).
+  // wind_velocity v_w (m/s), air_density ρ_w (kg/m³; the paper uses 2), drag d_w
+  // (N·s/m³, tangential drag per area; the paper uses 0.5).
   WindTerm(const Vec3& wind_velocity, double air_density, double drag);
 
   void add(const std::array<int, 9>& stencil);

@@ -1,4 +1,4 @@
-// A validated scene in SI units (design.md "Data flow"). Produced from a TOML
+// A validated scene in SI units (docs/design.md §4). Produced from a TOML
 // file by load_scene(); every field has its unit in its name or comment.
 #pragma once
 #include <array>
@@ -12,8 +12,8 @@ namespace wl {
 
 struct YarnType {
   double density_kg_per_m = 0.002;        // linear density ρ
-  double stretch_modulus_Pa = 5e5;        // Y, k_s = Y·πR² (physics.md §3.1)
-  double bending_modulus_Pa = 1.4e-4;     // B, k_b = B·πR² (physics.md §3.2)
+  double stretch_modulus_Pa = 5e5;        // Y, k_s = Y·πR² (docs/models.md §3.2)
+  double bending_modulus_Pa = 1.4e-4;     // B, k_b = B·πR² (docs/models.md §3.3)
 };
 
 struct Pattern {
@@ -29,7 +29,7 @@ struct ContactParams {
   double friction_coefficient = 0.5;       // μ
   double friction_stiffness_N_per_m = 1000.0;   // k_f
   double friction_damping_Ns_per_m = 1000.0;    // d_f
-  double tanh_sharpness_per_m = 10.0;           // p in K(x) = tanh(p x) (App. A uses 10)
+  double tanh_sharpness_per_m = 10.0;           // p in K(x) = tanh(p x) (docs/models.md §5.1)
   double parallel_stiffness_N_per_m2 = 1.0;     // k_c, V = ½ k_c L ReLU(d − Δu)²
   double lock_exponent = 3.0;                   // c
   double lock_sigma = 0.6;                      // σ

@@ -77,7 +77,7 @@ void ContactNormals::compute(const Vec& q) {
     v_[id] = coordinate(q, constants, d.v);
   }
 
-  // Normals: best-fit plane of the node and its grid neighbours (§3.6).
+  // Normals: best-fit plane of the node and its grid neighbours (docs/models.md §3.6).
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i) {
       const int id = grid_.node(i, j);
@@ -104,7 +104,7 @@ void ContactNormals::compute(const Vec& q) {
       if (eig.eigenvalues()[1] <= 1e-12 * eig.eigenvalues()[2] && on > 0.0) n = orient / on;
       if (n.dot(orient) < 0.0) n = -n;
       n_[id] = static_cast<double>(grid_.sign(i, j)) * n;
-      xw_[id] = x_[id] - R_ * n_[id];  // crimped warp copy (App. A)
+      xw_[id] = x_[id] - R_ * n_[id];  // crimped warp copy (docs/models.md §5.3)
       xf_[id] = x_[id] + R_ * n_[id];  // crimped weft copy
       fu_[id].setZero();
       fv_[id].setZero();
@@ -143,7 +143,7 @@ void ContactNormals::compute(const Vec& q) {
     }
   }
 
-  // F_n = ReLU(½ nᵀ(F^u − F^v)), 003 eq. 3; zero on the outer ring.
+  // F_n = ReLU(½ nᵀ(F^u − F^v)), Gong et al. 2022 eq. (3); zero on the outer ring.
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i) {
       const int id = grid_.node(i, j);

@@ -1,11 +1,11 @@
 // Contact normal n and normal force F_n at every crossing of the woven grid,
-// physics.md §3.6 (seed 003 eq. 3, §3.3) with the crimp of Appendix A.
+// docs/models.md §3.6 (Gong et al. 2022 eq. (3), §3.3) with the crimp of docs/models.md §5.3.
 //
 //   n    smallest-eigenvalue eigenvector of Σ(x_k − x̄)(x_k − x̄)ᵀ over the node
 //        and its (up to) 4 grid neighbours (best-fit plane), oriented along
 //        n_plane = (x_{i+1,j} − x_{i−1,j}) × (x_{i,j+1} − x_{i,j−1}) (the
 //        +u × +v direction: +z for a sheet x = (iL, jL, 0)), then multiplied by
-//        s_ij = grid.sign(i, j), so it points from warp to weft (§1.5).
+//        s_ij = grid.sign(i, j), so it points from warp to weft (docs/models.md §2.3).
 //        Ring nodes use the same fit with the neighbours they have, and
 //        one-sided differences in n_plane (a missing neighbour is replaced by
 //        the node itself).

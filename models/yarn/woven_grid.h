@@ -1,8 +1,8 @@
-// The woven grid of the yarn-level model (physics.md §1): node (i, j) is the
+// The woven grid of the yarn-level model (docs/models.md §2): node (i, j) is the
 // crossing of weft i and warp j; i runs along the warp (material u = i·L), j
 // along the weft (v = j·L). Warp j passes nodes (0..nu−1, j) and slides in u;
 // weft i passes nodes (i, 0..nv−1) and slides in v. The outer ring has no
-// sliding DoFs (physics.md §1.2, I-16); neither has any node when sliding is off.
+// sliding DoFs (docs/models.md §2.1, §4.2); neither has any node when sliding is off.
 #pragma once
 #include <vector>
 
@@ -29,7 +29,7 @@ class WovenGrid {
   int num_dofs() const { return num_dofs_; }
   // Constant coordinates referenced by encoded stencil entries.
   const Vec& constants() const { return constants_; }
-  // Over/under sign s_ij = ±1: +1 when the weft lies on the +n side of the warp (physics.md §1.5).
+  // Over/under sign s_ij = ±1: +1 when the weft lies on the +n side of the warp (docs/models.md §2.3).
   int sign(int i, int j) const { return sign_[node(i, j)]; }
   double spacing() const { return L_; }
 
@@ -41,7 +41,7 @@ class WovenGrid {
   Vec constants_;
 };
 
-// Pattern masks (physics.md §1.5; documented in README): +1/−1 per crossing.
+// Pattern masks (docs/models.md §2.3; scene keys in experiments/scenes/README.md): +1/−1 per crossing.
 int pattern_sign(const Pattern& p, int i, int j);
 
 }  // namespace wl

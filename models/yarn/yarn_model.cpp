@@ -31,7 +31,7 @@ const char* pattern_name(Pattern::Kind k) {
 }  // namespace
 
 // Rest position of node (i, j): upright x = (iL, 0, h − jL) (cloth in the xz
-// plane, wind along +y, Appendix A); flat x = (iL, jL, h).
+// plane, wind along +y, docs/models.md §2.5); flat x = (iL, jL, h).
 static Vec3 rest_position(const Scene& s, int i, int j) {
   const double L = s.spacing_m;
   return s.pose == Scene::Pose::upright ? Vec3(i * L, 0.0, s.height_m - j * L) : Vec3(i * L, j * L, s.height_m);
@@ -52,7 +52,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
       if (is_dof(d.v)) q0_[d.v] = j * L;
     }
 
-  // Per-yarn stiffness: warp j, weft i (k_s = Y·πR², k_b = B·πR², seed 003 eqs. 19, 26).
+  // Per-yarn stiffness: warp j, weft i (k_s = Y·πR², k_b = B·πR², docs/models.md §3.2, §3.3).
   std::vector<double> warp_ks(nv), warp_kb(nv), warp_rho(nv), weft_ks(nu), weft_kb(nu), weft_rho(nu);
   for (int j = 0; j < nv; ++j) {
     const YarnType& y = scene.warp_type(j);
@@ -114,7 +114,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   const std::vector<double>* fn = normals_ ? &normals_->normal_force() : nullptr;
 
   if (on.shear) {
-    // Four quadrants (warp ±, weft ±) at every node that has them (physics.md §1.4).
+    // Four quadrants (warp ±, weft ±) at every node that has them (docs/models.md §3.4.4).
     std::unique_ptr<CirioShearTerm> cirio;
     std::unique_ptr<GongShearTerm> gong;
     if (gong_shear) gong = std::make_unique<GongShearTerm>(fn, L, R, c.lock_exponent, c.lock_sigma);
@@ -129,7 +129,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
             const int x0 = grid_.dofs(n0).x, x1 = grid_.dofs(grid_.node(i1, j)).x, x3 = grid_.dofs(grid_.node(i, j3)).x;
             const std::array<int, 9> st{x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2};
             if (gong) {
-              // Lock only where the warp and the weft interlace (Appendix A).
+              // Lock only where the warp and the weft interlace (docs/models.md §3.4.4).
               const bool lock = grid_.sign(i, j) != grid_.sign(i1, j) && grid_.sign(i, j) != grid_.sign(i, j3);
               gong->add(st, n0, c.shear_modulus_Pa * area, lock);
             } else {
@@ -177,7 +177,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
 
   const Vec3 wind(scene.wind_velocity_m_per_s[0], scene.wind_velocity_m_per_s[1], scene.wind_velocity_m_per_s[2]);
   if (on.wind && (scene.air_density_kg_per_m3 > 0 || scene.wind_drag_Ns_per_m3 > 0)) {
-    // Each grid cell split into two triangles along (i,j)–(i+1,j+1) (seed 003 §B.11).
+    // Each grid cell split into two triangles along (i,j)–(i+1,j+1) (docs/models.md §3.9).
     auto t = std::make_unique<WindTerm>(wind, scene.air_density_kg_per_m3, scene.wind_drag_Ns_per_m3);
     auto tri = [&](int a, int b, int cc) {
       const int xa = grid_.dofs(a).x, xb = grid_.dofs(b).x, xc = grid_.dofs(cc).x;
@@ -259,7 +259,7 @@ Frame YarnModel::frame(double t, const Vec& q, const Vec& v) {
     const NodeDofs &a = grid_.dofs(s.a), &b = grid_.dofs(s.b);
     const double du = std::abs(coordinate(q, s.warp ? b.u : b.v) - coordinate(q, s.warp ? a.u : a.v));
     const double stretch = (q.segment<3>(b.x) - q.segment<3>(a.x)).norm() / du;
-    tension.values.push_back(s.ks * (stretch - 1.0));  // k_s(‖w‖−1), physics.md §3.1
+    tension.values.push_back(s.ks * (stretch - 1.0));  // k_s(‖w‖−1), docs/models.md §3.2
   }
   for (int j = 0; j + 1 < nv; ++j)
     for (int i = 0; i + 1 < nu; ++i) {

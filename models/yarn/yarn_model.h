@@ -1,4 +1,4 @@
-// The yarn-level woven model (physics.md §1–§3): crossing nodes with position
+// The yarn-level woven model (docs/models.md §2–§3): crossing nodes with position
 // and, inside the outer ring, sliding coordinates u (along the warp) and v
 // (along the weft). Built from a Scene; only the terms the scene turns on exist.
 #pragma once

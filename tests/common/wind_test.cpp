@@ -1,4 +1,4 @@
-// Wind on a triangle (physics.md §3.9, I-40, Appendix A): derivatives in x and
+// Wind on a triangle (docs/models.md §3.9, §4.19): derivatives in x and
 // ẋ against finite differences, independence of the triangle's orientation,
 // no force when moving with the wind, pressure along the wind, drag opposing
 // relative tangential motion, dissipation in still air, degenerate triangles.

@@ -83,7 +83,7 @@ TEST(FemMaterial, ParameterFileErrorsNameFileLineKeyValue) {
 }
 
 TEST(FaceTension, SeedWorkedExample) {
-  // seed 002: w_u = (1.1,0,0), w_v = (0,1,0), rest 1, 1 → tension 0.1·k_x
+  // Optitex note worked example: w_u = (1.1,0,0), w_v = (0,1,0), rest 1, 1 → tension 0.1·k_x
   const FaceTension t = face_tension(Vec3(1.1, 0, 0), Vec3(0, 1, 0), 1.0, 1.0, 300.0, 700.0);
   EXPECT_NEAR(t.lu, 1.1, 1e-15);
   EXPECT_NEAR(t.lv, 1.0, 1e-15);

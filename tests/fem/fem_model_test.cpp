@@ -252,7 +252,8 @@ TEST(FemModelIntegration, BackwardEulerNewtonRunsHangingSheet) { run_hanging(Bac
 namespace wl {
 namespace {
 
-// The acceptance scene: 500 steps of be-linear, no NaN, swings downwind, carries tension.
+// The published scene as the default experiment runs it: 500 steps of be-linear,
+// no NaN, swings downwind, carries tension.
 TEST(FemModelIntegration, HangingWindSceneRunsItsSteps) {
   const Scene s = load_scene(std::string(WEAVELAB_SOURCE_DIR) + "/experiments/scenes/hanging_wind.toml");
   FemModel m(s);

@@ -47,7 +47,7 @@ std::vector<test::LocalState> triangle_states() {
 std::array<int, 9> iota9() { return {0, 1, 2, 3, 4, 5, 6, 7, 8}; }
 
 TEST(DeformationGradient, ColumnsMatchSeedExample) {
-  // seed 002 worked example: u0=(0,0), u1=(1,0), u2=(0,1); p1 = (1.1,0,0) → w_u = (1.1,0,0), w_v = (0,1,0)
+  // Optitex note worked example: u0=(0,0), u1=(1,0), u2=(0,1); p1 = (1.1,0,0) → w_u = (1.1,0,0), w_v = (0,1,0)
   const TriangleRest r = triangle_rest(Vec2(0, 0), Vec2(1, 0), Vec2(0, 1));
   const double q[9] = {0, 0, 0, 1.1, 0, 0, 0, 1, 0};
   EXPECT_NEAR((warp_vector(r, q) - Vec3(1.1, 0, 0)).norm(), 0.0, 1e-15);

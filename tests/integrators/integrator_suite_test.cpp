@@ -1,5 +1,5 @@
 // One value-parameterised suite instantiated for every integrator name
-// (design.md "Testing habits"): convergence order against the closed-form
+// (docs/design.md §10): convergence order against the closed-form
 // solution of a linear mass–spring chain, energy behaviour, failure as an
 // outcome, pinned DoFs, statistics and step callbacks.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // `ida`, `arkode-dirk` and `be-newton` agree on the yarn model at small steps
-// (issue 4, Tests): a 6×6 hanging cloth from the published scene (wind,
+// (as the integrator experiments assume): a 6×6 hanging cloth from the published scene (wind,
 // gravity, two handles, all yarn forces), 5 ms simulated (the cloth falls
 // ~0.1 mm; the stiff handle and stretch modes keep the adaptive steps at a few
 // µs, so 20 ms would cost arkode-dirk about a minute).

@@ -52,7 +52,7 @@ TEST(SceneFiles, AllShippedScenesLoad) {
   EXPECT_GE(count, 7);
 }
 
-// Numbers from physics.md §5.1, §5.2 Table T1 and Appendix A.
+// Numbers from docs/models.md §8 (the published scene, Table T1, the authors' code).
 TEST(SceneFiles, HangingWindHasThePublishedNumbers) {
   const Scene s = load_scene((kScenes / "hanging_wind.toml").string());
   EXPECT_EQ(s.warps, 17);

@@ -1,4 +1,4 @@
-// The one generic finite-difference checker (design.md "Testing habits"):
+// The one generic finite-difference checker (docs/design.md §10):
 // central differences of a term's element at given local states. Checks
 //   force at v = 0 against −∂energy/∂q (conservative terms),
 //   ∂f/∂q  against differences of force in q,

@@ -4,7 +4,7 @@
 //    constant force m·g on every free mass (an IMEX-explicit term, like
 //    gravity). Linear, so it has a closed-form solution (exact_state).
 //  - VariableMassOscillator: one DoF with mass m(q) = m0 (1 + α q²) and a
-//    spring k: Lagrangian EOM m(q) q̈ = −k q − ½ m′(q) q̇² (physics.md §2: f
+//    spring k: Lagrangian EOM m(q) q̈ = −k q − ½ m′(q) q̇² (docs/models.md §3.1.2: f
 //    includes ∂T/∂q − Ṁq̇). Energy ½ m(q) q̇² + ½ k q² is conserved.
 //  - SpringNet: a 3-D nonlinear spring net on an r×c grid (structural and
 //    diagonal springs, rest length = initial length), gravity, two corners

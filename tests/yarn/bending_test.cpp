@@ -1,5 +1,5 @@
-// BendingTerm (physics.md §3.2): analytic force and Jacobian against finite
-// differences (bent, nearly straight and straight), against the seed's printed
+// BendingTerm (docs/models.md §3.3): analytic force and Jacobian against finite
+// differences (bent, nearly straight and straight), against Cirio et al. 2016's printed
 // eqs. (28)–(29), zero force when straight, closed-form force, translation invariance.
 #include <gtest/gtest.h>
 
@@ -111,7 +111,7 @@ TEST(BendingTerm, StraightYarnHasExactlyZeroForceAndFiniteJacobian) {
 }
 
 TEST(BendingTerm, ForceMatchesClosedForm) {
-  // Planar stencil bent by θ: |F_x1| = 2 k_b θ /(l1 U) (000 eq. 21, |P_1 d_2| = sin θ),
+  // Planar stencil bent by θ: |F_x1| = 2 k_b θ /(l1 U) (Cirio et al. 2016 eq. (21), |P_1 d_2| = sin θ),
   // perpendicular to x1−x0, and F_u1 = k_b θ²/U².
   const double kb = 1.3, th = 0.7, l1 = 0.8, l2 = 1.1, U = 2.0;
   const BendingTerm t = one_stencil(kb);
@@ -129,7 +129,7 @@ TEST(BendingTerm, ForceMatchesClosedForm) {
 }
 
 TEST(BendingTerm, JacobianEqualsSeedEquations28And29) {
-  // 000 eqs. (28), (29) written out literally, at a generic bent state.
+  // Cirio et al. 2016 eqs. (28), (29) written out literally, at a generic bent state.
   const double kb = 0.8;
   const BendingTerm t = one_stencil(kb);
   const std::vector<double> q = {0.1, 0.2, -0.3, 0.9, 1.1, 0.4, -0.5, 0.6, 0.2, 2.2, -0.1};
@@ -149,7 +149,7 @@ TEST(BendingTerm, JacobianEqualsSeedEquations28And29) {
   const Mat3 K12 = -2 * kb / (l2 * l1 * s * U) * ((1.0 / s) * (1.0 + th / s * c12) * P1 * d2 * d1.transpose() + th * P1) * P2;
   EXPECT_LT((K.block<3, 3>(3, 3) - K11).norm(), 1e-12 * K11.norm());
   EXPECT_LT((K.block<3, 3>(3, 6) - K12).norm(), 1e-12 * K12.norm());
-  // and the force, 000 eq. (21)
+  // and the force, Cirio et al. 2016 eq. (21)
   const Vec3 F1 = -2 * kb * th / (l1 * U * s) * P1 * d2;
   EXPECT_LT((f.segment<3>(3) - F1).norm(), 1e-13);
 }

@@ -1,4 +1,4 @@
-// ContactNormals (physics.md §3.6, Appendix A): best-fit normals and the crimped
+// ContactNormals (docs/models.md §3.6, §5.3): best-fit normals and the crimped
 // normal force F_n on flat, pulled, mirrored and curved plain-weave sheets.
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 namespace wl {
 namespace {
 
-constexpr double kL = 1e-3, kR = 0.5e-3;      // App. A set-up: L = 1 mm, R = 0.5 mm
+constexpr double kL = 1e-3, kR = 0.5e-3;      // docs/models.md §8.4: L = 1 mm, R = 0.5 mm
 constexpr double kKsU = 0.39, kKbU = 1.1e-10;  // warp k_s (N), k_b (N·m²)
 constexpr double kKsV = 0.13, kKbV = 0.9e-10;  // weft
 
@@ -51,9 +51,9 @@ Vec state(const WovenGrid& g, const std::function<Vec3(int, int)>& pos) {
 // above (weft) the sheet, its in-yarn neighbours R on the other side, so every
 // segment rises 2R over h:
 //   l = √(h² + 4R²),  sin α = 2R/l,  cos α = h/l,  bending angle θ = 2α at every node.
-// Stretch (§3.1): both segments pull the centre toward the sheet with tension
+// Stretch (docs/models.md §3.2): both segments pull the centre toward the sheet with tension
 //   T = k_s(l/L − 1), normal component 2 T sin α.
-// Bending (§3.2, 000 eq. 21), U = 2L: on the stencil centred at the node
+// Bending (docs/models.md §3.3, Cirio et al. 2016 eq. (21)), U = 2L: on the stencil centred at the node
 //   F_x1 = 2k_bθ/(l U) (sin α, −cos α) and F_x2 = 2k_bθ/(l U)(−sin α, −cos α),
 //   so F_x0 = −(F_x1 + F_x2) has normal component 2·C cos α, C = k_bθ/(L l);
 // each stencil centred at an in-yarn neighbour (mirror image) pushes the node

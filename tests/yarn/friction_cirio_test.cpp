@@ -1,4 +1,4 @@
-// Cirio stick/slip friction (physics.md §3.7(a)): Jacobians in both modes, the
+// Cirio stick/slip friction (docs/models.md §3.7.3): Jacobians in both modes, the
 // return mapping in accept_step (anchor moves only when slipping, to exactly
 // k_f|u − ū| = μF_n), return to stick on reversal, and a pulled crossing under
 // backward Euler that sticks below μF_n and slides at (F − μF_n)/d_f above it.

@@ -1,7 +1,7 @@
-// Gong friction (physics.md §3.7(b)): the law's partial derivatives (I-27 sign),
+// Gong friction (docs/models.md §3.7.2): the law's partial derivatives (sign of §4.16),
 // element Jacobians against finite differences with F_u, F_n frozen in each
 // regime, the regimes themselves (stick ≈ spring, breakaway = average, kinetic
-// ≈ −μF_n − d_f u̇, also for negative pulls, I-28), and the anchor update.
+// ≈ −μF_n − d_f u̇, also for negative pulls, §4.15), and the anchor update.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -80,7 +80,7 @@ TEST(GongFrictionTerm, RegimesOfTheLaw) {
   const double far = 1e-3;  // p δu = 10: kinetic friction, independent of δu
   EXPECT_NEAR(force_of(t, 3, far, ud), -mu * Fn[0] - df * ud, 1e-6);
   EXPECT_NEAR(force_of(t, 3, 3 * far, ud), -mu * Fn[0] - df * ud, 1e-6);
-  EXPECT_NEAR(force_of(t, 4, -far, -ud), mu * Fn[0] + df * ud, 1e-6);  // I-28: |F_u|
+  EXPECT_NEAR(force_of(t, 4, -far, -ud), mu * Fn[0] + df * ud, 1e-6);  // docs/models.md §4.15: |F_u|
 
   const auto s = t.sliding_state();
   EXPECT_LT(s[1], 1e-12);

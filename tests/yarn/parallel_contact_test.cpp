@@ -1,5 +1,5 @@
 // ParallelContactTerm: FD checks in both regimes, no force when Δu ≥ d, ends
-// pushed apart when active; parallel_contact_distance rule (physics.md §1.5).
+// pushed apart when active; parallel_contact_distance rule (docs/models.md §4.14).
 #include <gtest/gtest.h>
 
 #include "models/yarn/terms/parallel_contact.h"

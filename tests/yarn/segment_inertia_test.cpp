@@ -1,5 +1,5 @@
 // SegmentInertiaTerm: mass block against quadrature of the kinetic energy with
-// the corrected interpolation (physics.md §1.3, I-13), force against
+// the corrected interpolation (docs/models.md §2.2, §4.1), force against
 // Lagrange's equation, analytic Jacobians against finite differences, and
 // properties of M and of the inertial force.
 #include <gtest/gtest.h>
@@ -96,7 +96,7 @@ TEST(SegmentInertiaTerm, MassMatchesQuadratureOfKineticEnergy) {
   }
 }
 
-// Lagrange: M q̈ = ∂T/∂q − Ṁq̇ (physics.md §2.2). ∂T/∂q by central differences
+// Lagrange: M q̈ = ∂T/∂q − Ṁq̇ (docs/models.md §3.1.2). ∂T/∂q by central differences
 // of T = ½ q̇ᵀ M(q) q̇; Ṁq̇ by central differences of M along q̇.
 TEST(SegmentInertiaTerm, ForceMatchesLagrangeEquation) {
   std::mt19937 rng(12);
@@ -146,7 +146,7 @@ TEST(SegmentInertiaTerm, MassIsSymmetricPositiveSemidefiniteWithSlidingNullSpace
     Eigen::SelfAdjointEigenSolver<Mat8> es(m);
     const auto& ev = es.eigenvalues();  // ascending
     EXPECT_GT(ev(0), -1e-14 * ev(7));
-    // Rank 6 (physics.md §2.1): two zero eigenvalues, the rest clearly positive.
+    // Rank 6 (docs/models.md §3.1.1): two zero eigenvalues, the rest clearly positive.
     EXPECT_LT(std::abs(ev(1)), 1e-12 * ev(7));
     EXPECT_GT(ev(2), 1e-6 * ev(7));
     // Null vectors (w, 0, 1, 0) and (0, w, 0, 1): nodes sliding through still material.
@@ -162,7 +162,7 @@ TEST(SegmentInertiaTerm, MassIsSymmetricPositiveSemidefiniteWithSlidingNullSpace
 // With u̇ = 0 the Lagrangian part of M is constant, so the x-rows of the
 // inertial force vanish. The u-rows do not: T = ρΔu σx/6 gives
 // f_u0 = −½ρ‖ẋ0‖² and f_u1 = +½ρ‖ẋ1‖² (material carried across the segment
-// ends; physics.md §2.5 closed form with u̇ = 0, derived by hand).
+// ends; docs/models.md §3.1.2 closed form with u̇ = 0, derived by hand).
 TEST(SegmentInertiaTerm, ZeroSlidingVelocityGivesNoForceOnPositions) {
   std::mt19937 rng(15);
   auto t = make_term();

@@ -1,5 +1,5 @@
-// Cirio shear (physics.md §3.3(a)): derivatives against finite differences,
-// forces against seed 000 (43)–(45) written out independently, rest at π/2.
+// Cirio shear (docs/models.md §3.4.2): derivatives against finite differences,
+// forces against Cirio et al. 2016 eqs. (43)–(45) written out independently, rest at π/2.
 #include <gtest/gtest.h>
 
 #include <numbers>
@@ -35,7 +35,7 @@ TEST(CirioShearTerm, DerivativesMatchFiniteDifferences) {
 }
 
 TEST(CirioShearTerm, ForcesMatchSeedFormula) {
-  // Seed 000 (43)–(45): F_x1 = k_x L (φ−π/2)/(l1 sin φ) P1 d3, F_x3 (1↔3), F_x0 = −(F_x1 + F_x3).
+  // Cirio et al. 2016 eqs. (43)–(45): F_x1 = k_x L (φ−π/2)/(l1 sin φ) P1 d3, F_x3 (1↔3), F_x0 = −(F_x1 + F_x3).
   const double kL = 1.7;
   const CirioShearTerm t = make_term(kL);
   for (double phi : {0.4, 1.1, 2.3}) {

@@ -1,6 +1,6 @@
-// Gong shear with lock (physics.md §3.3(b)): derivatives against finite
+// Gong shear with lock (docs/models.md §3.4.3): derivatives against finite
 // differences (F_n frozen) at angles on both sides of φ̄ and around the lock
-// angle; k_sh > 0 on (0, π) thanks to the mirrored angle (I-34); the locked
+// angle; k_sh > 0 on (0, π) thanks to the mirrored angle (docs/models.md §4.12); the locked
 // stiffness rises steeply below φ_l; F_n and SπR² enter as (1 + F_n) SπR².
 #include <gtest/gtest.h>
 
@@ -35,7 +35,7 @@ TEST(GongShearTerm, LockedDerivativesMatchFiniteDifferences) {
 }
 
 TEST(GongShearTerm, LockedDerivativesAtYarnScale) {
-  // Appendix A numbers: L = 1 mm, R = 0.5 mm (φ_l = π/3), S = 1000.
+  // docs/models.md §8.4 numbers: L = 1 mm, R = 0.5 mm (φ_l = π/3), S = 1000.
   std::vector<double> Fn{0.3};
   const double L = 1e-3, R = 5e-4;
   GongShearTerm t(&Fn, L, R, 3.0, 0.6);
@@ -100,7 +100,7 @@ TEST(GongShearTerm, LockedStiffnessRisesSteeplyBelowLockAngle) {
     const double pl = t.lock_angle(), free = 1.0;  // (1 + F_n) SπR²
     EXPECT_NEAR(pl, 2 * std::asin(RL), 1e-15);
     EXPECT_NEAR(t.stiffness(0, kPi / 2).k, free, 0.01 * free);
-    EXPECT_LT(t.stiffness(0, pl + 0.8).k, 1.5 * free);  // σ = 0.6 gives a broad transition (I-35)
+    EXPECT_LT(t.stiffness(0, pl + 0.8).k, 1.5 * free);  // σ = 0.6 gives a broad transition (docs/models.md §4.11)
     EXPECT_GT(t.stiffness(0, pl - 0.1).k, 20.0 * free);
     // Monotone: the more the yarns are sheared shut, the stiffer.
     double prev = t.stiffness(0, 0.01).k;

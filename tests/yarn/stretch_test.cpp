@@ -1,4 +1,4 @@
-// StretchTerm (physics.md §3.1): analytic force and Jacobian against finite
+// StretchTerm (docs/models.md §3.2): analytic force and Jacobian against finite
 // differences, zero force at rest, the closed-form tension, translation invariance.
 #include <gtest/gtest.h>
 

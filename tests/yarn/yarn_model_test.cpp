@@ -1,5 +1,5 @@
-// Physics of the assembled yarn-level model under backward Euler
-// (issue 2 §7): DoF counts, momentum balance, energy behaviour, the catenary,
+// Physics of the assembled yarn-level model under backward Euler:
+// DoF counts, momentum balance, energy behaviour, the catenary,
 // and the published hanging cloth.
 #include <gtest/gtest.h>
 
@@ -46,7 +46,7 @@ double total_energy(YarnModel& m, const Vec& q, const Vec& v) {
 }
 
 TEST(YarnModel, DofCountsMatchPhysicsTable) {
-  // physics.md §1.2: l = 3rc + 2(r−2)(c−2); 17×17 → 1317.
+  // docs/models.md §2.1: l = 3rc + 2(r−2)(c−2); 17×17 → 1317.
   EXPECT_EQ(YarnModel(small_scene(17, true)).num_dofs(), 1317);
   EXPECT_EQ(YarnModel(small_scene(5, true)).num_dofs(), 93);
   EXPECT_EQ(YarnModel(small_scene(17, false)).num_dofs(), 3 * 289);

@@ -50,7 +50,7 @@ Geometry geometry(const double* q) {
   g.e2 = r2 / g.l2;
   g.cross = g.e1.cross(g.e2);
   g.c = g.e1.dot(g.e2);
-  g.theta = std::atan2(g.cross.norm(), g.c);  // = arccos(−d_1·d_2), 000 eq. 16
+  g.theta = std::atan2(g.cross.norm(), g.c);  // = arccos(−d_1·d_2), Cirio et al. 2016 eq. (16)
   return g;
 }
 
@@ -73,7 +73,7 @@ double BendingTerm::angle(const Vec3& x0, const Vec3& x1, const Vec3& x2) {
 
 double BendingTerm::local_energy(const double* q, double kb) {
   const Geometry g = geometry(q);
-  return kb * g.theta * g.theta / (q[9] - q[10]);  // V = k_b θ²/(u1−u2), 000 eq. 18
+  return kb * g.theta * g.theta / (q[9] - q[10]);  // V = k_b θ²/(u1−u2), Cirio et al. 2016 eq. (18)
 }
 
 void BendingTerm::local_evaluate(const double* q, double kb, double* f_out, double* K_out) {
@@ -88,13 +88,13 @@ void BendingTerm::local_evaluate(const double* q, double kb, double* f_out, doub
   const Vec3 gc1 = P1e2 / g.l1;
   const Vec3 gc2 = -P2e1 / g.l2;
 
-  // ∇Φ = Φ'(c)∇c = −2α ∇c;  F_x = −(k_b/U)∇Φ   (000 eqs. 21–23)
+  // ∇Φ = Φ'(c)∇c = −2α ∇c;  F_x = −(k_b/U)∇Φ   (Cirio et al. 2016 eqs. (21)–(23))
   const Vec3 gp1 = -2.0 * a * gc1, gp2 = -2.0 * a * gc2, gp0 = -(gp1 + gp2);
   Eigen::Map<Local> f(f_out);
   f.segment<3>(0) = -(kb / U) * gp0;
   f.segment<3>(3) = -(kb / U) * gp1;
   f.segment<3>(6) = -(kb / U) * gp2;
-  // F_u1 = −F_u2 = k_b θ²/U²   (000 eqs. 24–25; 003 eq. 30 has a spurious 2, I-19)
+  // F_u1 = −F_u2 = k_b θ²/U²   (Cirio et al. 2016 eqs. (24)–(25); docs/models.md §4.7)
   const double fu1 = kb * th * th / (U * U);
   f[9] = fu1;
   f[10] = -fu1;
@@ -110,14 +110,14 @@ void BendingTerm::local_evaluate(const double* q, double kb, double* f_out, doub
   const Mat3 Hc22 = -(g.c * P2 + P2e1 * g.e2.transpose() + g.e2 * P2e1.transpose()) / (g.l2 * g.l2);
   const Mat3 Hc12 = -P1 * P2 / (g.l1 * g.l2);
 
-  // ∂F/∂x = −(k_b/U)(Φ''∇c∇cᵀ + Φ'∇²c) = −(k_b/U)(2β ∇c∇cᵀ − 2α ∇²c)   (000 eqs. 28–31)
+  // ∂F/∂x = −(k_b/U)(Φ''∇c∇cᵀ + Φ'∇²c) = −(k_b/U)(2β ∇c∇cᵀ − 2α ∇²c)   (Cirio et al. 2016 eqs. (28)–(31))
   const double b = beta(th);
   const double s = -kb / U;
   const Mat3 K11 = s * (2.0 * b * gc1 * gc1.transpose() - 2.0 * a * Hc11);
   const Mat3 K22 = s * (2.0 * b * gc2 * gc2.transpose() - 2.0 * a * Hc22);
   const Mat3 K12 = s * (2.0 * b * gc1 * gc2.transpose() - 2.0 * a * Hc12);
   const Mat3 K21 = K12.transpose();
-  // Translation invariance (000 eqs. 32–33): x0 rows/columns are minus the sums.
+  // Translation invariance (Cirio et al. 2016 eqs. (32)–(33)): x0 rows/columns are minus the sums.
   const Mat3 K10 = -(K11 + K12), K20 = -(K21 + K22);
   const Mat3 K01 = K10.transpose(), K02 = K20.transpose();
   const Mat3 K00 = -(K01 + K02);
@@ -132,7 +132,7 @@ void BendingTerm::local_evaluate(const double* q, double kb, double* f_out, doub
   K.block<3, 3>(6, 0) = K20;
   K.block<3, 3>(6, 3) = K21;
   K.block<3, 3>(6, 6) = K22;
-  // x–u coupling: ∂F_x/∂u1 = −∂F_x/∂u2 = (k_b/U²)∇Φ, ∂F_u1/∂x = (k_b/U²)∇Φᵀ (000 eqs. 35–40)
+  // x–u coupling: ∂F_x/∂u1 = −∂F_x/∂u2 = (k_b/U²)∇Φ, ∂F_u1/∂x = (k_b/U²)∇Φᵀ (Cirio et al. 2016 eqs. (35)–(40))
   const double r = kb / (U * U);
   const Vec3* gp[3] = {&gp0, &gp1, &gp2};
   for (int n = 0; n < 3; ++n) {
@@ -141,7 +141,7 @@ void BendingTerm::local_evaluate(const double* q, double kb, double* f_out, doub
     K.block<1, 3>(9, 3 * n) = r * gp[n]->transpose();
     K.block<1, 3>(10, 3 * n) = -r * gp[n]->transpose();
   }
-  // ∂F_u1/∂u1 = ∂F_u2/∂u2 = −∂F_u1/∂u2 = −2 k_b θ²/U³   (000 eq. 34; 003 eq. 41 wrong, I-21)
+  // ∂F_u1/∂u1 = ∂F_u2/∂u2 = −∂F_u1/∂u2 = −2 k_b θ²/U³   (Cirio et al. 2016 eq. (34); docs/models.md §4.9)
   const double kuu = -2.0 * kb * th * th / (U * U * U);
   K(9, 9) = kuu;
   K(10, 10) = kuu;

@@ -1,5 +1,5 @@
-// Yarn bending on three consecutive nodes of one yarn, physics.md §3.2
-// (seed 000 eqs. 16–40; 003's (30), (32), (41) are wrong, errata I-18..I-21).
+// Yarn bending on three consecutive nodes of one yarn, docs/models.md §3.3
+// (Cirio et al. 2016 eqs. (16)–(40); Gong et al. 2022 corrected, docs/models.md §4.6–§4.9).
 //   V = k_b θ²/U,  θ = arccos(−d_1·d_2),  U = u1 − u2 > 0,  k_b = B·πR² (N·m²).
 // Local stencil (11): x0[3] (centre), x1[3] (next node, +u), x2[3] (previous
 // node, −u), u1, u2. The centre's own u does not enter.
@@ -9,7 +9,7 @@
 //   Φ'(c) = −2α(θ),  α = θ/sin θ,   Φ''(c) = 2β(θ),  β = (1 − θ cot θ)/sin²θ,
 // both finite at θ = 0 (α → 1, β → 1/3) and evaluated by series for small θ;
 // θ = atan2(‖e1×e2‖, e1·e2) and P_1 e2 = (e1×e2)×e1 avoid cancellation. The
-// force −(k_b/U)Φ'∇c and Jacobian −(k_b/U)(Φ''∇c∇cᵀ + Φ'∇²c) are 000 eqs. 21–40
+// force −(k_b/U)Φ'∇c and Jacobian −(k_b/U)(Φ''∇c∇cᵀ + Φ'∇²c) are Cirio et al. 2016 eqs. (21)–(40)
 // rewritten (equal term by term for θ > 0; checked against eqs. 28–29 in the tests).
 // Precondition: θ < π (a yarn folded back onto itself is singular), l_1, l_2 > 0.
 #pragma once

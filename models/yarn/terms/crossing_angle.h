@@ -1,14 +1,14 @@
 // The angle φ = arccos(d1·d3) between a warp and a weft segment at a crossing,
 // with its gradient and Hessian over the local stencil (x0, x1, x3), and the
-// element outputs of any energy V(φ) (physics.md §3.3(a), "useful building
-// block"; seed 000 (41)–(51)). Shared by the shear terms.
+// element outputs of any energy V(φ) (docs/models.md §3.4.1; Cirio et al. 2016
+// eqs. (41)–(51)). Shared by the shear terms.
 //
 // With t1 = P1 d3 / sin φ, t3 = P3 d1 / sin φ (unit, in the plane of d1, d3) and
 // b = d1 × d3 / sin φ (unit normal of that plane):
 //   ∇_{x1}φ = −t1 / l1,  ∇_{x3}φ = −t3 / l3,  ∇_{x0}φ = −(∇_{x1}φ + ∇_{x3}φ)
 //   H11 = (t1 d1ᵀ + d1 t1ᵀ + cot φ b bᵀ) / l1²,  H33 = (1 ↔ 3),
 //   H13 = H31 = −b bᵀ / (l1 l3 sin φ),  H0j = −(H1j + H3j).
-// These equal physics.md's H11, H13 (P1 P3 = b bᵀ − cos φ t1 t3ᵀ, t1·t3 = −cos φ)
+// These equal the angle Hessian of Cirio et al. 2016 eqs. (46)–(49) (P1 P3 = b bᵀ − cos φ t1 t3ᵀ, t1·t3 = −cos φ)
 // but avoid cos φ / sin² φ cancellations: only the out-of-plane b bᵀ parts
 // carry 1/sin φ, which is the genuine cone singularity of arccos at φ → 0, π.
 #pragma once
@@ -77,7 +77,7 @@ struct CrossingAngle {
     return H;
   }
 
-  // For any V(φ): F = −V′ ∇φ, ∂F/∂x = −(V″ ∇φ ∇φᵀ + V′ H) (physics.md §3.3(a)).
+  // For any V(φ): F = −V′ ∇φ, ∂F/∂x = −(V″ ∇φ ∇φᵀ + V′ H) (docs/models.md §3.4.1).
   void write(double dV, double d2V, const ElementOutput& out) const {
     if (degenerate) return;  // outputs arrive zero-filled
     Eigen::Map<Vec9> f(out.force);

@@ -1,7 +1,7 @@
-// What both sliding-friction laws share (physics.md §3.7): one element per
+// What both sliding-friction laws share (docs/models.md §3.7.1): one element per
 // sliding DoF of a crossing (local stencil (u0)), evaluated in stage 1 with the
 // crossing's contact normal force F_n and the stage-0 force on the DoF, F_u
-// ("all other forces", I-50), read in prepare() and held FROZEN for the
+// ("all other forces", docs/models.md §4.17), read in prepare() and held FROZEN for the
 // element; an anchor ū per element; damping −d_f u̇.
 #pragma once
 #include <string>
@@ -33,7 +33,7 @@ class FrictionTerm : public StencilTerm<1> {
  protected:
   // normal_force: per-node F_n [N] owned by the model (null: F_n = 0); mu
   // friction coefficient; kf spring [N/m] (> 0 when `kf_positive`); df damping
-  // [N·s/m]; p tanh sharpness (the seeds give none, the authors' code uses 10).
+  // [N·s/m]; p tanh sharpness (the papers give none; docs/models.md §5.1).
   FrictionTerm(const char* who, const std::vector<double>* normal_force, double mu, double kf, double df, double p,
                bool kf_positive);
   double normal_force_at(int e) const { return normal_force_ ? (*normal_force_)[node_[e]] : 0.0; }

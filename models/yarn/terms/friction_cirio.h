@@ -1,9 +1,9 @@
 // Cirio's stick/slip sliding friction on one Eulerian DoF of one crossing,
-// physics.md §3.7(a), seed 004 §3.4:
+// docs/models.md §3.7.3 (after Cirio et al. 2016 as retold by the yarn-cloth blog summary §3.4):
 //   stick: F = −k_f (u − ū) − d_f u̇
 //   slip:  F = −sign(u − ū) μF_n − d_f u̇
 //
-// The switch (not stated in the seeds) is a return mapping done in
+// The switch (not stated in the sources, docs/models.md §5.5) is a return mapping done in
 // accept_step on the accepted state: if k_f|u − ū| > μF_n the crossing slips,
 // the anchor is moved so that k_f|u − ū| = μF_n and the slip direction
 // sign(u − ū) is stored; otherwise it sticks. The mode (stick, slip+ or slip−)

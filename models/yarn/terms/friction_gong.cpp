@@ -7,8 +7,8 @@
 namespace wl {
 
 // A = k_f δu − K_δ μF_n, B = k_f δu + K_δ μF_n, K_δ = tanh(p δu), K₂ = tanh(p(μF_n − |F_u|));
-// F = −(A K₂ + B)/2 and, physics.md §3.7(b) with I-27 (p restored, sign of the
-// F_u term flipped) and I-28 (|F_u|):
+// F = −(A K₂ + B)/2 and, docs/models.md §3.7.2 with §4.16 (p restored, sign of the
+// F_u term flipped) and §4.15 (|F_u|):
 //   ∂F/∂δu  = −½(k_f − p(1−K_δ²)μF_n) K₂ − ½(k_f + p(1−K_δ²)μF_n)
 //   ∂F/∂F_u = +½ A p (1−K₂²) sign(F_u)
 //   ∂F/∂F_n = ½ K_δ μ K₂ − ½ A p (1−K₂²) μ − ½ K_δ μ
@@ -31,7 +31,7 @@ double GongFrictionTerm::slide_indicator(double Fu, double Fn) const {
   return 1.0 / (1.0 + std::exp(-kSlideSharpness * (std::abs(Fu) - mu_ * Fn)));
 }
 
-// ū += sigmoid(10⁴(|F_u| − μF_n)) u̇ h (Appendix A). F_u is taken from the
+// ū += sigmoid(10⁴(|F_u| − μF_n)) u̇ h (docs/models.md §5.5). F_u is taken from the
 // context when the caller provides the stage-0 force of the accepted state,
 // otherwise from the last prepare(); F_n is the current table value.
 void GongFrictionTerm::accept_step(const EvalContext& ctx, double h) {

@@ -1,14 +1,14 @@
 // Gong's differentiable sliding friction on one Eulerian DoF of one crossing,
-// physics.md §3.7(b), seed 003 (4)=(48):
+// docs/models.md §3.7.2, Gong et al. 2022 eq. (4) = (48):
 //   F = −( (k_f δu − K(δu) μF_n)/2 · K(μF_n − |F_u|) + (k_f δu + K(δu) μF_n)/2 ) − d_f u̇,
 //   δu = u − ū,  K(x) = tanh(p x).
 // |F_u| instead of F_u so that a pull in either direction can reach the kinetic
-// regime (I-28); derivatives as corrected in I-27.
+// regime (docs/models.md §4.15); derivatives as corrected in §4.16.
 //
-// F_u (the stage-0 generalized force on this DoF, "all other forces", I-50) and
+// F_u (the stage-0 generalized force on this DoF, "all other forces", docs/models.md §4.17) and
 // F_n (contact normal force of the crossing) are FROZEN inputs: read in
 // prepare() and held constant for the element, so ∂F/∂u = ∂F/∂δu only and
-// ∂F/∂u̇ = −d_f. The anchor ū moves in accept_step (Appendix A):
+// ∂F/∂u̇ = −d_f. The anchor ū moves in accept_step (docs/models.md §5.5):
 //   ū += sigmoid(10⁴ (|F_u| − μF_n)) · u̇ · h.
 //
 // Local stencil (u0): one sliding DoF; the model adds one element for u and one
@@ -21,7 +21,7 @@
 namespace wl {
 
 // The friction law without damping at frozen F_u, F_n, with its partial
-// derivatives (for chaining ∂F_u/∂q, ∂F_n/∂q if a model wants them; I-27).
+// derivatives (for chaining ∂F_u/∂q, ∂F_n/∂q if a model wants them; docs/models.md §3.7.2).
 struct GongFrictionResponse {
   double force = 0.0;    // F_Slide + d_f u̇
   double d_delta = 0.0;  // ∂/∂δu
@@ -32,7 +32,7 @@ GongFrictionResponse gong_friction_law(double delta_u, double F_u, double F_n, d
 
 class GongFrictionTerm : public FrictionTerm {
  public:
-  static constexpr double kSlideSharpness = 1e4;  // 1/N, slide indicator (Appendix A)
+  static constexpr double kSlideSharpness = 1e4;  // 1/N, slide indicator (docs/models.md §5.1)
 
   GongFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df, double p)
       : FrictionTerm("GongFrictionTerm", normal_force, mu, kf, df, p, false) {}

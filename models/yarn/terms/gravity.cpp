@@ -22,7 +22,7 @@ void GravityTerm::add(const std::array<int, 8>& stencil, double rho) {
   rho_.push_back(rho);
 }
 
-// V = −ρ Δu gᵀ(x0 + x1)/2, physics.md §3.8 with g the (downward) acceleration
+// V = −ρ Δu gᵀ(x0 + x1)/2, docs/models.md §3.8 with g the (downward) acceleration
 double GravityTerm::energy(int e, const double* q) const {
   Eigen::Map<const Vec3> x0(q), x1(q + 3);
   return -rho_[e] * (q[7] - q[6]) * g_.dot(x0 + x1) / 2;

@@ -1,6 +1,6 @@
-// Gravity on a yarn segment with sliding end coordinates (physics.md §3.8,
-// seed 003 eqs. 59–67). Local stencil (x0[3], x1[3], u0, u1). g is the
-// acceleration vector (pointing down, e.g. (0, 0, −9.81) m/s²); the seed's g
+// Gravity on a yarn segment with sliding end coordinates (docs/models.md §3.8,
+// Gong et al. 2022 eqs. (59)–(67)). Local stencil (x0[3], x1[3], u0, u1). g is the
+// acceleration vector (pointing down, e.g. (0, 0, −9.81) m/s²); the paper's g
 // points up, so here V = −ρ Δu gᵀ(x0 + x1)/2, the exact ∫ −ρ gᵀx(u) du.
 #pragma once
 #include <array>

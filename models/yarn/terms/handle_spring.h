@@ -1,5 +1,5 @@
 // A zero-rest-length penalty spring holding a point at an anchor (scene
-// handles, physics.md App. A: "handles are penalty springs"). Model agnostic:
+// handles, docs/models.md §3.10). Model agnostic:
 // local stencil x[3] of any point (yarn node or mesh vertex).
 //   V = ½ k ‖x − anchor‖²
 #pragma once

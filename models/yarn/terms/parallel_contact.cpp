@@ -18,14 +18,14 @@ void ParallelContactTerm::add(const std::array<int, 2>& stencil, double kc_L, do
   d_.push_back(d);
 }
 
-// V = ½ k_c L ReLU(d − Δu)², physics.md §3.5
+// V = ½ k_c L ReLU(d − Δu)², docs/models.md §3.5
 double ParallelContactTerm::energy(int e, const double* q) const {
   const double gap = d_[e] - (q[1] - q[0]);
   return gap > 0.0 ? 0.5 * kc_L_[e] * gap * gap : 0.0;
 }
 
 // F_u0 = −F_u1 = k_c L (Δu − d) when active; ∂F_u0/∂u0 = ∂F_u1/∂u1 = −k_c L,
-// ∂F_u0/∂u1 = ∂F_u1/∂u0 = k_c L (physics.md §3.5).
+// ∂F_u0/∂u1 = ∂F_u1/∂u0 = k_c L (docs/models.md §3.5).
 void ParallelContactTerm::evaluate(int e, const double* q, const double*, const ElementOutput& out) const {
   const double gap = d_[e] - (q[1] - q[0]);
   if (gap <= 0.0) return;  // inactive: outputs stay zero

@@ -1,6 +1,6 @@
 // Contact between the two parallel yarns that cross a segment at its ends, as a
-// penalty in Eulerian space (physics.md §3.5, seed 000 eqs. 72–74, seed 003
-// eqs. 55–58). Local stencil (u0, u1):
+// penalty in Eulerian space (docs/models.md §3.5, Cirio et al. 2016 eqs. (72)–(74),
+// Gong et al. 2022 eqs. (55)–(58)). Local stencil (u0, u1):
 //   V = ½ k_c L ReLU(d − Δu)²,  Δu = u1 − u0.
 #pragma once
 #include <array>
@@ -26,7 +26,7 @@ class ParallelContactTerm : public StencilTerm<2> {
 
 // Contact distance of the two yarns crossing a segment at its ends, from the
 // over/under signs (±1) of the two crossings: 4R when the segment's yarn
-// passes between them (signs differ), else 2R (physics.md §1.5, I-39).
+// passes between them (signs differ), else 2R (docs/models.md §4.14).
 double parallel_contact_distance(int sign_a, int sign_b, double R);
 
 }  // namespace wl

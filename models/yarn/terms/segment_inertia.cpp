@@ -10,7 +10,7 @@ namespace {
 using Mat8 = Eigen::Matrix<double, 8, 8>;
 using Vec8 = Eigen::Matrix<double, 8, 1>;
 
-// B(a, σ) of physics.md §2.1 (linear in a and σ).
+// B(a, σ) of docs/models.md §3.1.1 (linear in a and σ).
 Mat8 pattern_b(const Vec3& a, double s) {
   Mat8 b = Mat8::Zero();
   b.block<3, 1>(0, 6) = -2 * a;
@@ -28,7 +28,7 @@ Mat8 pattern_b(const Vec3& a, double s) {
   return b;
 }
 
-// A0 of physics.md §2.1: the x–x part [2I I; I 2I].
+// A0 of docs/models.md §3.1.1: the x–x part [2I I; I 2I].
 Mat8 pattern_a0() {
   Mat8 a = Mat8::Zero();
   a.block<3, 3>(0, 0) = 2 * Mat3::Identity();
@@ -62,7 +62,7 @@ void SegmentInertiaTerm::mass_block(const double* q, double rho, double* m) {
   Eigen::Map<const Vec3> x0(q), x1(q + 3);
   const Vec3 d = x1 - x0;
   const double D = q[7] - q[6];
-  // M = ρ/6 [D A0 + B(d, ‖d‖²/D)], physics.md §2.1 compact form
+  // M = ρ/6 [D A0 + B(d, ‖d‖²/D)], docs/models.md §3.1.1
   Eigen::Map<Mat8> out(m);
   out = rho / 6.0 * (D * pattern_a0() + pattern_b(d, d.squaredNorm() / D));
 }
@@ -72,7 +72,7 @@ double SegmentInertiaTerm::kinetic_energy(const double* q, const double* v, doub
   const Vec3 d = x1 - x0;
   const double D = q[7] - q[6];
   const double ud0 = v[6], ud1 = v[7];
-  // T = ρ/6 [D σx − dᵀν + ‖d‖² σu / D], physics.md §2.5
+  // T = ρ/6 [D σx − dᵀν + ‖d‖² σu / D], docs/models.md §3.1.2
   const Vec3 nu = (2 * ud0 + ud1) * xd0 + (ud0 + 2 * ud1) * xd1;
   const double sx = xd0.squaredNorm() + xd0.dot(xd1) + xd1.squaredNorm();
   const double su = ud0 * ud0 + ud0 * ud1 + ud1 * ud1;
@@ -81,8 +81,8 @@ double SegmentInertiaTerm::kinetic_energy(const double* q, const double* v, doub
 
 // With c = ρ/6, N = [∂M/∂q_j q̇]_j (8×8, column j) the generalized force is
 //   ∂T/∂q = ½ Nᵀq̇,  Ṁq̇ = N q̇,  so  f = ½Nᵀq̇ − Nq̇,
-//   ∂f/∂q̇ = Nᵀ − N − Ṁ   (∂Ṁ/∂q̇_j = ∂M/∂q_j, physics.md §2.4).
-// ∂M/∂d_k = c B(e_k, 2d_k/D), ∂M/∂D = c[A0 − B(0, ‖d‖²/D²)] (physics.md §2.3).
+//   ∂f/∂q̇ = Nᵀ − N − Ṁ   (∂Ṁ/∂q̇_j = ∂M/∂q_j, docs/models.md §3.1.3).
+// ∂M/∂d_k = c B(e_k, 2d_k/D), ∂M/∂D = c[A0 − B(0, ‖d‖²/D²)] (docs/models.md §3.1.2).
 // Every second derivative of M is c B(0, Σ) with the (d, D) Hessian of ‖d‖²/D,
 //   Σ = [2I/D, −2d/D²; −2dᵀ/D², 2‖d‖²/D³],  Σ_q = SᵀΣS,
 // and B(0,1)q̇ = (0, 0, a, b) with a = 2u̇0 + u̇1, b = u̇0 + 2u̇1, so
@@ -119,7 +119,7 @@ void SegmentInertiaTerm::evaluate(int e, const double* q, const double* v, const
     const Vec3 ddot = xd1 - xd0;
     const double Ddot = ud1 - ud0;
     const double beta = 2 * d.dot(ddot) / D - dd * Ddot / (D * D);
-    const Mat8 mdot = c * (Ddot * pattern_a0() + pattern_b(ddot, beta));  // physics.md §2.4
+    const Mat8 mdot = c * (Ddot * pattern_a0() + pattern_b(ddot, beta));  // docs/models.md §3.1.3
     MatMap(out.dfdv) = n.transpose() - n - mdot;
   }
   if (out.dfdq) {

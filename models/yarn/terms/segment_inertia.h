@@ -1,8 +1,8 @@
 // Inertia of a yarn segment with sliding (Eulerian) end coordinates
-// (physics.md §2; seed 003 §B.2–B.4 with errata I-13, I-23..I-26).
+// (docs/models.md §3.1; Gong et al. 2022 §B.2–§B.4 with the corrections of §4.1, §4.3, §4.4).
 // Local stencil (x0[3], x1[3], u0, u1), u1 > u0. With d = x1 − x0, D = u1 − u0:
-//   mass block   M = ρ/6 [D A0 + B(d, ‖d‖²/D)]            (physics.md §2.1, compact form)
-//   force        f = ∂T/∂q − Ṁq̇, T = ½ q̇ᵀ M q̇           (physics.md §2.2, I-26)
+//   mass block   M = ρ/6 [D A0 + B(d, ‖d‖²/D)]            (docs/models.md §3.1.1)
+//   force        f = ∂T/∂q − Ṁq̇, T = ½ q̇ᵀ M q̇           (docs/models.md §3.1.2, §4.4)
 // The force is velocity dependent and has no potential (conservative() = false).
 #pragma once
 #include <array>
@@ -27,7 +27,7 @@ class SegmentInertiaTerm : public StencilTerm<8> {
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
   // Kinetic energy T = ½ρ∫‖ẋ(u)‖²du of one segment in closed form
-  // (physics.md §2.5): local q and v in stencil order, rho in kg/m.
+  // (docs/models.md §3.1.2): local q and v in stencil order, rho in kg/m.
   static double kinetic_energy(const double* q, const double* v, double rho);
   // The 8×8 mass block M(q) of one segment (column-major into m).
   static void mass_block(const double* q, double rho, double* m);

@@ -15,7 +15,7 @@ void CirioShearTerm::add(const std::array<int, 9>& stencil, double kx_L) {
   kx_L_.push_back(kx_L);
 }
 
-// V = ½ k_x L (φ − π/2)², physics.md §3.3(a), seed 000 (42).
+// V = ½ k_x L (φ − π/2)², docs/models.md §3.4.2, Cirio et al. 2016 eq. (42).
 double CirioShearTerm::energy(int e, const double* q) const {
   const CrossingAngle a(q);
   const double s = a.phi - std::numbers::pi / 2;
@@ -23,7 +23,7 @@ double CirioShearTerm::energy(int e, const double* q) const {
 }
 
 // F = −V′∇φ, ∂F/∂x = −(V″∇φ∇φᵀ + V′H) with V′ = k_x L (φ − π/2), V″ = k_x L;
-// equal to seed 000 (43)–(51). A degenerate crossing (φ → 0, π or a zero-length
+// equal to Cirio et al. 2016 eqs. (43)–(51). A degenerate crossing (φ → 0, π or a zero-length
 // segment) gets zero force: the direction of ∇φ is undefined there.
 void CirioShearTerm::evaluate(int e, const double* q, const double*, const ElementOutput& out) const {
   const CrossingAngle a(q);

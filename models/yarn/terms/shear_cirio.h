@@ -1,6 +1,6 @@
 // Cirio's shear between a warp and a weft segment at a crossing (one quadrant):
 //   V = ½ k_x L (φ − π/2)²,  φ = arccos(d1·d3)
-// physics.md §3.3(a), seed 000 (41)–(51). Local stencil (x0, x1, x3): x0 the
+// docs/models.md §3.4.2, Cirio et al. 2016 eqs. (41)–(51). Local stencil (x0, x1, x3): x0 the
 // crossing, x1 a warp neighbour, x3 a weft neighbour; the model adds all four
 // quadrants of a crossing. No force on the Eulerian coordinates.
 #pragma once

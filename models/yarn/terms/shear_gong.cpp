@@ -48,14 +48,14 @@ void GongShearTerm::add(const std::array<int, 9>& stencil, int node, double S_pi
 
 double GongShearTerm::normal_force(int e) const { return normal_force_ ? (*normal_force_)[node_[e]] : 0.0; }
 
-// k_sh(φ) and its derivatives, physics.md §3.3(b) "cleaner equivalent", with γ
-// and g at the mirrored angle φ* = φ̄ − |φ − φ̄| (I-34): k(φ) = K(φ*),
+// k_sh(φ) and its derivatives, docs/models.md §3.4.3, with γ
+// and g at the mirrored angle φ* = φ̄ − |φ − φ̄| (docs/models.md §4.12): k(φ) = K(φ*),
 // k′ = K′(φ*) dφ*/dφ with dφ*/dφ = ±1, k″ = K″(φ*).
 GongShearTerm::Stiffness GongShearTerm::stiffness(int e, double phi) const {
   const double Fn = normal_force(e);
   Stiffness s;
   if (!lock_[e]) {
-    s.k = (Fn + 1.0) * S_pi_R2_[e];  // k_sh = (1+F_n) SπR², seed 003 §3.3
+    s.k = (Fn + 1.0) * S_pi_R2_[e];  // k_sh = (1+F_n) SπR², Gong et al. 2022 §3.3
     return s;
   }
   const double C = 0.5 * (Fn + 1.0) * S_pi_R2_[e];
@@ -93,7 +93,7 @@ GongShearTerm::Stiffness GongShearTerm::stiffness(int e, double phi) const {
   return s;
 }
 
-// V = ½ k_sh(φ) L (φ − φ̄)², seed 003 (51).
+// V = ½ k_sh(φ) L (φ − φ̄)², Gong et al. 2022 eq. (51), docs/models.md §3.4.3.
 double GongShearTerm::energy(int e, const double* q) const {
   const CrossingAngle a(q);
   const double d = a.phi - kRest;
@@ -101,7 +101,7 @@ double GongShearTerm::energy(int e, const double* q) const {
 }
 
 // V′ = ½k′La² + kLa, V″ = ½k″La² + 2k′La + kL with a = φ − φ̄; then
-// F = −V′∇φ, ∂F/∂x = −(V″∇φ∇φᵀ + V′H) (physics.md §3.3(b), FD-verified there).
+// F = −V′∇φ, ∂F/∂x = −(V″∇φ∇φᵀ + V′H) (docs/models.md §3.4.1, §3.4.3).
 // A degenerate crossing (φ → 0, π) gets zero force: ∇φ has no direction there.
 void GongShearTerm::evaluate(int e, const double* q, const double*, const ElementOutput& out) const {
   const CrossingAngle a(q);

@@ -1,17 +1,17 @@
-// Gong's shear with shear lock (one quadrant of a crossing), physics.md §3.3(b),
-// seed 003 (5), (51)–(54):
+// Gong's shear with shear lock (one quadrant of a crossing), docs/models.md §3.4.3,
+// Gong et al. 2022 eqs. (5), (51)–(54):
 //   V = ½ k_sh(φ) L (φ − φ̄)²,  φ̄ = π/2,  φ = arccos(d1·d3)
 //   k_sh = ½(F_n+1) SπR² ((1+γ^c) + (1−γ^c) tanh g(φ))   (interlacing quadrants, lock)
 //   k_sh = (F_n+1) SπR²                                   (otherwise)
 //   γ = (√2 L − 2L sin(φ/2))/R,  g = φ̄⁵(φ−φ_l) / ((φ(φ−φ_l)(φ−φ̄))² + φ̄⁴σ²),  φ_l = 2 arcsin(R/L).
-// Corrections used: π in the stiffness (I-30); γ and g are evaluated at the
-// mirrored angle φ* = φ̄ − |φ − φ̄| so that k_sh stays positive for φ > φ̄ (I-34);
+// Corrections used: π in the stiffness (docs/models.md §4.10); γ and g are evaluated at the
+// mirrored angle φ* = φ̄ − |φ − φ̄| so that k_sh stays positive for φ > φ̄ (§4.12);
 // the clean V(φ), V′, V″ form with the generic angle Hessian instead of the
-// seed's Jacobians, whose diagonal blocks lack a cross term (I-36).
+// paper's Jacobians, whose diagonal blocks lack a cross term (§4.13).
 //
 // F_n = (*normal_force)[node] is a FROZEN input: it is read at each evaluation
 // and treated as a constant, so ∂F_n/∂x is not part of the Jacobian (as in the
-// seed, I-36) and energy() is the energy at that frozen F_n.
+// paper, docs/models.md §5.4) and energy() is the energy at that frozen F_n.
 //
 // Local stencil (x0, x1, x3): x0 the crossing, x1 a warp neighbour, x3 a weft
 // neighbour; the model adds all four quadrants. No force on u, v.
@@ -27,7 +27,7 @@ class GongShearTerm : public StencilTerm<9> {
  public:
   // normal_force: per-node contact normal force F_n (N), owned by the model
   // (may be null: F_n = 0). L segment rest length (m), R yarn radius (m),
-  // c lock exponent (003: 3), sigma lock sharpness (003: 0.6; smaller = sharper, I-32).
+  // c lock exponent (paper: 3), sigma lock sharpness (paper: 0.6; smaller = sharper, docs/models.md §4.11).
   GongShearTerm(const std::vector<double>* normal_force, double L, double R, double c, double sigma);
 
   // node: index into *normal_force of the crossing x0. S_pi_R2 = SπR² (N) for

@@ -20,7 +20,7 @@ double StretchTerm::local_energy(const double* q, double ks) {
   Eigen::Map<const Vec3> x0(q), x1(q + 3);
   const double du = q[7] - q[6];
   const double wn = (x1 - x0).norm() / du;
-  return 0.5 * ks * du * (wn - 1.0) * (wn - 1.0);  // V = ½ k_s Δu (‖w‖−1)², 000 eq. 9
+  return 0.5 * ks * du * (wn - 1.0) * (wn - 1.0);  // V = ½ k_s Δu (‖w‖−1)², Cirio et al. 2016 eq. (9)
 }
 
 void StretchTerm::local_evaluate(const double* q, double ks, double* f_out, double* K_out) {
@@ -28,12 +28,12 @@ void StretchTerm::local_evaluate(const double* q, double ks, double* f_out, doub
   const double du = q[7] - q[6];
   const Vec3 e = x1 - x0;
   const double l = e.norm();
-  const Vec3 d = e / l;          // d_1, 000 eq. 3
+  const Vec3 d = e / l;          // d_1, Cirio et al. 2016 eq. (4)
   const Vec3 w = e / du;         // w, ‖w‖ = l/Δu
   const double wn = l / du;
 
   Eigen::Map<Local> f(f_out);
-  // F_x1 = −F_x0 = −k_s(‖w‖−1) d_1;  F_u1 = −F_u0 = ½ k_s (‖w‖²−1)   (000 eqs. 10–11)
+  // F_x1 = −F_x0 = −k_s(‖w‖−1) d_1;  F_u1 = −F_u0 = ½ k_s (‖w‖²−1)   (Cirio et al. 2016 eqs. (10)–(11))
   const Vec3 fx1 = -ks * (wn - 1.0) * d;
   const double fu1 = 0.5 * ks * (wn * wn - 1.0);
   f.segment<3>(0) = -fx1;
@@ -43,11 +43,11 @@ void StretchTerm::local_evaluate(const double* q, double ks, double* f_out, doub
   if (!K_out) return;
 
   Eigen::Map<LocalMatrix> K(K_out);
-  // ∂F_x1/∂x1 = k_s (P_1/l_1 − I/Δu)   (000 eq. 12)
+  // ∂F_x1/∂x1 = k_s (P_1/l_1 − I/Δu)   (Cirio et al. 2016 eq. (12))
   const Mat3 Kxx = ks * ((Mat3::Identity() - d * d.transpose()) / l - Mat3::Identity() / du);
-  // ∂F_x1/∂u1 = k_s w/Δu   (000 eq. 14, corrected 003 eq. 24, I-17)
+  // ∂F_x1/∂u1 = k_s w/Δu   (Cirio et al. 2016 eq. (14); docs/models.md §4.5)
   const Vec3 Kxu = ks * w / du;
-  // ∂F_u1/∂u1 = −k_s ‖w‖²/Δu   (000 eq. 13)
+  // ∂F_u1/∂u1 = −k_s ‖w‖²/Δu   (Cirio et al. 2016 eq. (13))
   const double Kuu = -ks * wn * wn / du;
   K.block<3, 3>(0, 0) = Kxx;
   K.block<3, 3>(3, 3) = Kxx;
@@ -58,7 +58,7 @@ void StretchTerm::local_evaluate(const double* q, double ks, double* f_out, doub
   K.block<3, 1>(0, 7) = -Kxu;  // ∂F_x0/∂u1
   K.block<3, 1>(3, 6) = -Kxu;  // ∂F_x1/∂u0
   K.block<3, 1>(3, 7) = Kxu;   // ∂F_x1/∂u1
-  // u–x blocks are the transposes: ∂F_u1/∂x1 = k_s wᵀ/Δu   (000 eq. 15)
+  // u–x blocks are the transposes: ∂F_u1/∂x1 = k_s wᵀ/Δu   (Cirio et al. 2016 eq. (15))
   K.block<1, 3>(6, 0) = Kxu.transpose();
   K.block<1, 3>(6, 3) = -Kxu.transpose();
   K.block<1, 3>(7, 0) = -Kxu.transpose();

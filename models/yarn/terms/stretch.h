@@ -1,5 +1,6 @@
-// Yarn stretch on one segment [x0, x1] of a warp or weft, physics.md §3.1
-// (seed 000 eqs. 9–15; 003 eq. 24 is wrong, erratum I-17).
+// Yarn stretch on one segment [x0, x1] of a warp or weft, docs/models.md §3.2
+// (Cirio et al. 2016 eqs. (9)–(15); Gong et al. 2022 eq. (24) corrected,
+// docs/models.md §4.5).
 //   V = ½ k_s Δu (‖w‖−1)²,  w = (x1−x0)/Δu,  Δu = u1−u0 > 0,  k_s = Y·πR² (N).
 // Local stencil (8): x0[3], x1[3], u0, u1, where u is the sliding (arc-length)
 // coordinate along the segment's own yarn (v for a weft). Frozen u entries are
