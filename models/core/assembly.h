@@ -1,4 +1,4 @@
-// One shared assembly for every model (design.md "Core abstractions"): gathers
+// One shared assembly for every model (docs/design.md §3.3): gathers
 // each element's local state, calls its term and scatters the result into a
 // global force vector and matrices that share one sparsity pattern (computed
 // once). Elements of a term are coloured so that no two elements of a colour

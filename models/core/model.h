@@ -1,5 +1,5 @@
 // The Model interface: everything an integrator may know about a simulated
-// system (design.md "Core abstractions"). Generalized coordinates q and
+// system (docs/design.md §3.1). Generalized coordinates q and
 // velocities v live in contiguous vectors; mass, ∂f/∂q and ∂f/∂v share one
 // fixed sparsity pattern; f includes inertial forces where M depends on q.
 #pragma once
@@ -43,7 +43,7 @@ class Model {
   // DoFs held fixed (pinned): the integrators keep their q and v unchanged and
   // remove them from every solve.
   virtual std::span<const int> fixed_dofs() const = 0;
-  // Whether M depends on q (then f contains ∂T/∂q − Ṁq̇, physics.md §2).
+  // Whether M depends on q (then f contains ∂T/∂q − Ṁq̇, docs/models.md §3.1.2).
   virtual bool mass_depends_on_q() const = 0;
 
   // Sparsity shared by mass, dfdq and dfdv (fixed for the model's lifetime).

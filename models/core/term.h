@@ -1,6 +1,6 @@
 // A Term is one force on a fixed local stencil (a segment, three nodes of a yarn,
 // a crossing, a triangle): energy, force and Jacobians over its stencil only
-// (design.md "Core abstractions"). Shared code (assembly.h) gathers local states,
+// (docs/design.md §3.2). Shared code (assembly.h) gathers local states,
 // calls the term per element and scatters into global vectors and matrices.
 #pragma once
 #include <array>
@@ -23,7 +23,7 @@ struct ElementOutput {
 
 // Global state a term may read before its elements are evaluated (auxiliary
 // quantities such as contact normal forces, or the force already assembled from
-// the other terms, which friction needs as F_u, physics.md §3.7).
+// the other terms, which friction needs as F_u, docs/models.md §3.7.1).
 struct EvalContext {
   double t = 0.0;
   const Vec* q = nullptr;

@@ -1,5 +1,5 @@
 // Deformation gradient of a triangle over warp/weft material coordinates
-// (physics.md §6, seed 002): F = [dx1 dx2]·[du1 du2]⁻¹ (3×2), with
+// (docs/models.md §6.2, the Optitex note): F = [dx1 dx2]·[du1 du2]⁻¹ (3×2), with
 // du_k = (u_k − u_0, v_k − v_0) and dx_k = x_k − x_0. The columns
 //   w_u = F·(1,0)  (warp direction),  w_v = F·(0,1)  (weft direction)
 // are linear in the three positions: w_u = Σ a_k x_k, w_v = Σ b_k x_k, with
@@ -35,7 +35,7 @@ inline TriangleRest triangle_rest(const Vec2& uv0, const Vec2& uv1, const Vec2& 
     throw std::invalid_argument("triangle_rest: degenerate or clockwise UV triangle (UV_det = " +
                                 std::to_string(det) + ")");
   TriangleRest r;
-  // w_u = (dx1·pv2 − dx2·pv1)/det, w_v = (−dx1·pu2 + dx2·pu1)/det  (seed 002)
+  // w_u = (dx1·pv2 − dx2·pv1)/det, w_v = (−dx1·pu2 + dx2·pu1)/det  (the Optitex note)
   r.a = {(pv1 - pv2) / det, pv2 / det, -pv1 / det};
   r.b = {(pu2 - pu1) / det, -pu2 / det, pu1 / det};
   r.area = 0.5 * det;

@@ -1,4 +1,4 @@
-// Material parameters of the continuum model (issue 3 §4). Sources, later
+// Material parameters of the continuum model (docs/models.md §6.7). Sources, later
 // overriding earlier:
 //   1. defaults derived from the yarn parameters (a first guess only, to be
 //      replaced by calibration):
@@ -7,7 +7,7 @@
 //        shear_N_per_m        = S·πR²/L (contact.shear_modulus_Pa; small-angle
 //                               match of the yarn V = ½k_sh L(φ−π/2)² per crossing)
 //        shear_lock_angle_rad = π/2 − 2·arcsin(R/L)  (the shear angle where the
-//                               yarn model locks, physics.md §3.3 φ_l; no locking
+//                               yarn model locks, docs/models.md §3.4.3 φ_l; no locking
 //                               when R/L ≥ 1/√2)
 //        shear_lock_exponent  = contact.lock_exponent (c)
 //        warp_bending_N_m     = k_b/L  (k_b = B·πR², mean over warps), weft likewise

@@ -1,4 +1,4 @@
-// The triangle mesh of the continuum model (issue 3, physics.md §6): per-vertex
+// The triangle mesh of the continuum model (docs/models.md §6.1): per-vertex
 // rest material coordinates (u, v) in metres (u along the warp, v along the
 // weft) and initial 3-D positions. The rest state of the material is the flat
 // UV layout; 3-D positions are only the initial state.

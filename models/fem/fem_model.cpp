@@ -94,7 +94,7 @@ void FemModel::build() {
     for (int i = 0; i < nv; ++i) t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
     terms_.push_back(std::move(t));
   }
-  // Wind: the yarn model's term and parameters, on every triangle (physics.md §3.9).
+  // Wind: the yarn model's term and parameters, on every triangle (docs/models.md §3.9, §6.6).
   const Vec3 wind(scene_.wind_velocity_m_per_s[0], scene_.wind_velocity_m_per_s[1], scene_.wind_velocity_m_per_s[2]);
   if (on.wind && (scene_.air_density_kg_per_m3 > 0 || scene_.wind_drag_Ns_per_m3 > 0)) {
     auto t = std::make_unique<WindTerm>(wind, scene_.air_density_kg_per_m3, scene_.wind_drag_Ns_per_m3);

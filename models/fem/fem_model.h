@@ -1,4 +1,4 @@
-// The continuum triangle-FEM model (issue 3, physics.md §6): the cloth of a
+// The continuum triangle-FEM model (docs/models.md §6): the cloth of a
 // Scene as a triangle mesh (fem_mesh.h) with 3 DoFs per vertex (x at 3·vertex),
 // material from fem_material.h, and one term per idea (models/fem/terms/):
 //   stretch  → WarpWeftStretchTerm       bending → HingeBendingTerm (interior edges)

@@ -1,4 +1,4 @@
-// The Optitex tension map of one face (physics.md §6, seed 002):
+// The Optitex tension map of one face (docs/models.md §6.8, the Optitex note):
 //   l_u = ‖w_u‖, l_v = ‖w_v‖ (stretch ratios), rest values rl_u, rl_v from the
 //   initial positions; amp_U = max(0, (l_u − rl_u)·min(5·10⁴, K_sX)) and likewise
 //   amp_V (compression ignored); w_u ← amp_U ŵ_u, w_v ← amp_V ŵ_v;
@@ -14,7 +14,7 @@ struct FaceTension {
   double lu = 0.0, lv = 0.0, tension = 0.0;
 };
 
-constexpr double kOptitexStiffnessClip = 5e4;  // min(5e4, K_s), seed 002
+constexpr double kOptitexStiffnessClip = 5e4;  // min(5e4, K_s), the Optitex note
 
 FaceTension face_tension(const Vec3& wu, const Vec3& wv, double rest_lu, double rest_lv, double ks_u, double ks_v);
 

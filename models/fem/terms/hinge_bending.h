@@ -1,5 +1,5 @@
 // Bending across an interior edge of the triangle mesh (dihedral-angle hinge,
-// discrete shells, Grinspun et al. 2003) [not in seeds]:
+// discrete shells, Grinspun et al. 2003) [not in the sources] (docs/models.md §6.5):
 //   V = ½ k_e · ‖ē‖²/(Ā₁+Ā₂) · (θ − θ₀)²,
 // ē the rest (UV) edge, Ā₁, Ā₂ the rest areas of the two triangles, θ the
 // signed dihedral angle (0 when flat, robust there: atan2 form, no 1/sin θ),

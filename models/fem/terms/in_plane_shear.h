@@ -1,5 +1,5 @@
-// In-plane shear of a triangle with optional shear locking [not in seeds: the
-// continuum counterpart of the yarn shear, physics.md §3.3]:
+// In-plane shear of a triangle with optional shear locking [not in the sources: the
+// continuum counterpart of the yarn shear, docs/models.md §3.4; here §6.4]:
 //   s = w_u·w_v / (‖w_u‖‖w_v‖)        cosine of the warp/weft angle φ;
 //                                      s = cos φ = sin γ, γ = π/2 − φ the shear angle
 //   V = A·½ k_sh ψ(s),  ψ(s) = s² + s_l²·r^{m+1}/(m+1),  r = s²/s_l²,

@@ -1,4 +1,4 @@
-// Lumped mass of a triangle [not in seeds; standard]: the constant diagonal
+// Lumped mass of a triangle [not in the sources; standard] (docs/models.md §6.6): the constant diagonal
 // block m/3·I₃ per vertex, m = ρ_A·A (areal density × rest area). No force.
 // The FEM mass matrix is constant (FemModel::mass_depends_on_q() is false).
 #pragma once

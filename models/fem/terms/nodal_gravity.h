@@ -1,5 +1,5 @@
-// Gravity on a lumped vertex mass [not in seeds; the nodal form of
-// physics.md §3.8]: V = −m g·x, F = m g, ∂F/∂x = 0. g is the scene's gravity
+// Gravity on a lumped vertex mass [not in the sources; the nodal form of
+// docs/models.md §3.8, §6.6]: V = −m g·x, F = m g, ∂F/∂x = 0. g is the scene's gravity
 // acceleration vector (default (0, 0, −9.81) m/s²); m the vertex's lumped mass
 // (sum of ρ_A·A/3 over its triangles), so gravity and inertia use one mass.
 #pragma once

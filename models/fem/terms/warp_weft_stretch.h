@@ -1,6 +1,6 @@
-// Warp and weft stretch of a triangle (physics.md §6 strain measure; the
+// Warp and weft stretch of a triangle (docs/models.md §6.3; the
 // energy is the continuum analogue of the yarn stretch V = ½k_sΔu(‖w‖−1)²,
-// physics.md §3.1):
+// docs/models.md §3.2):
 //   V = A·½( k_u(‖w_u‖−1)² + k_v(‖w_v‖−1)² ),
 // A the rest (UV) area, w_u, w_v the columns of F (deformation_gradient.h),
 // k_u, k_v stiffness per unit width [N/m] along warp (u) and weft (v). The rest
