@@ -43,9 +43,9 @@ struct FemMaterial {
   double warp_bending_N_m = 0.0, weft_bending_N_m = 0.0;
 };
 
-class FemParameterError : public std::runtime_error {
+class FemParameterError : public std::invalid_argument {  // bad input: exit 2
  public:
-  using std::runtime_error::runtime_error;
+  using std::invalid_argument::invalid_argument;
 };
 
 // Step 1 alone.
