@@ -2,11 +2,12 @@
 // `weavelab work-precision SCENE`, `weavelab stability SCENE`.
 // Exit codes: 0 success, 1 numerical failure (outcome in the summary),
 // 2 bad scene, input file or arguments, or an output folder in use,
-// 3 output could not be written.
+// 3 output could not be written, 130 / 143 interrupted by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 
+#include "experiments/driver/interrupt.h"
 #include "experiments/driver/model_factory.h"
 #include "experiments/driver/run.h"
 #include "experiments/driver/run_settings.h"
@@ -205,7 +206,13 @@ int main(int argc, char** argv) {
     wl::apply_run_overrides(scene, ov, opt.overrides);  // every rule before anything is written
     opt.out_dir = wl::output_folder(run->count("--out") ? std::optional(out_dir) : std::nullopt,
                                     std::filesystem::path("results") / std::filesystem::path(scene_path).stem() / model);
+    wl::install_interrupt_handlers();
     wl::RunReport rep = wl::run_scene(scene, opt);
+    if (rep.result.outcome == wl::Outcome::interrupted) {
+      std::cerr << "weavelab: " << rep.result.message << " at t = " << rep.end_time << " s; frames, metrics and summary in "
+                << opt.out_dir.string() << "\n";
+      return wl::interrupted_exit_code(wl::interrupt_signal());
+    }
     if (rep.result.outcome != wl::Outcome::ok) {
       std::cerr << "weavelab: run ended with outcome '" << wl::to_string(rep.result.outcome) << "' at t = " << rep.end_time
                 << " s: " << rep.result.message << " (summary in " << opt.out_dir.string() << ")\n";
