@@ -11,7 +11,7 @@
 
 namespace wl {
 
-enum class Outcome { ok, diverged, nan, step_too_small, max_steps, not_offered };
+enum class Outcome { ok, diverged, nan, step_too_small, max_steps, not_offered, interrupted };
 const char* to_string(Outcome o);
 
 struct IntegratorStats {

@@ -17,6 +17,7 @@ const char* to_string(Outcome o) {
     case Outcome::step_too_small: return "step_too_small";
     case Outcome::max_steps: return "max_steps";
     case Outcome::not_offered: return "not_offered";
+    case Outcome::interrupted: return "interrupted";
   }
   return "unknown";
 }

@@ -2,14 +2,17 @@
 // `weavelab work-precision SCENE`, `weavelab stability SCENE`,
 // `weavelab calibrate SCENE`.
 // Exit codes: 0 success, 1 numerical failure (outcome in the summary),
-// 2 bad scene or bad arguments, 3 output could not be written.
+// 2 bad scene, input file or arguments, or an output folder in use,
+// 3 output could not be written, 130 / 143 interrupted by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 
 #include "experiments/driver/calibrate.h"
+#include "experiments/driver/interrupt.h"
 #include "experiments/driver/model_factory.h"
 #include "experiments/driver/run.h"
+#include "experiments/driver/run_settings.h"
 #include "experiments/driver/stability.h"
 #include "experiments/driver/sweep.h"
 #include "experiments/driver/work_precision.h"
@@ -80,12 +83,8 @@ template <class Config>
 void load_experiment_scene(const ExperimentArgs& a, CLI::App* cmd, Config& c) {
   c.scene_path = a.scene;
   c.scene = wl::load_scene(a.scene);  // a missing or bad file is a SceneError (exit 2)
-  c.scene_text = wl::read_text_file(a.scene);
-  if (cmd->count("--duration")) {
-    if (!(a.duration > 0)) throw std::invalid_argument("--duration must be > 0, got " + std::to_string(a.duration));
-    c.scene.duration_s = a.duration;
-    c.overrides["duration_s"] = std::to_string(a.duration);
-  }
+  c.scene_text = c.scene.text;
+  if (cmd->count("--duration")) wl::apply_duration_override(c.scene, a.duration, c.overrides);
   c.models = split_list(a.models);
   if (c.models.empty()) throw std::invalid_argument("--models: empty list");
   c.integrators = split_list(a.integrators);
@@ -99,7 +98,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   std::string scene_path, model = "yarn", integrator, out_dir;
-  double dt = 0, duration = 0, rtol = 0;
+  double dt = 0, duration = 0, output_interval = 0, rtol = 0;
   bool quiet = false, adaptive = false;
   auto* run = app.add_subcommand("run", "Simulate a scene and write frames (VTU/PVD), metrics.csv and summary.json");
   run->add_option("scene", scene_path, "Scene file (TOML)")->required();
@@ -107,6 +106,7 @@ int main(int argc, char** argv) {
   run->add_option("--integrator", integrator, "Integrator (overrides the scene): " + joined(wl::integrator_names()));
   run->add_option("--dt", dt, "Time step [s] (overrides the scene)");
   run->add_option("--duration", duration, "Simulated time [s] (overrides the scene)");
+  run->add_option("--output-interval", output_interval, "Time between frames [s] (overrides the scene)");
   run->add_option("--out", out_dir, "Output folder (default results/<scene name>/<model>)");
   run->add_flag("--adaptive", adaptive, "Adaptive steps with error control (overrides the scene; --dt is the first step)");
   run->add_option("--rtol", rtol, "Relative tolerance of adaptive steps (implies --adaptive; atol = 1e-3 rtol m)");
@@ -192,15 +192,15 @@ int main(int argc, char** argv) {
       if (c.integrators.empty()) c.integrators = wl::integrator_names();
       if (!wp_rtols.empty()) c.rtols = split_numbers(wp_rtols, "--rtols");
       if (!wp_ref_rtols.empty()) c.reference.rtols = split_numbers(wp_ref_rtols, "--reference-rtols");
-      if (!(wp_dt_max > 0) || !(wp_dt_min > 0) || wp_dt_min > wp_dt_max)
+      if (wl::positive_option("--dt-min", wp_dt_min) > wl::positive_option("--dt-max", wp_dt_max))
         throw std::invalid_argument("--dt-min/--dt-max: need 0 < dt-min <= dt-max");
-      if (!(wp_budget > 0)) throw std::invalid_argument("--budget must be > 0");
+      wl::positive_option("--budget", wp_budget);
       c.dt_max = wp_dt_max;
       c.dt_min = wp_dt_min;
       c.run_budget_cpu_s = wp_budget;
       c.reference.cache_dir = ref_dir;
       c.reference.progress = c.progress;
-      c.out_dir = wp_args.out.empty() ? std::filesystem::path("results/work_precision") : std::filesystem::path(wp_args.out);
+      c.out_dir = wl::output_folder(wp->count("--out") ? std::optional(wp_args.out) : std::nullopt, "results/work_precision");
       const auto r = wl::run_work_precision(c);
       std::cerr << "weavelab: work-precision: " << r.rows.size() << " runs in " << r.wall_s << " s; results in "
                 << c.out_dir.string() << "\n";
@@ -210,12 +210,11 @@ int main(int argc, char** argv) {
       wl::StabilityConfig c;
       load_experiment_scene(st_args, st, c);
       c.multipliers = split_numbers(st_mults, "--multipliers");
-      c.dt_min = st_dt_min;
-      c.dt_max = st_dt_max;
+      c.dt_min = wl::positive_option("--dt-min", st_dt_min);
+      c.dt_max = wl::positive_option("--dt-max", st_dt_max);
       c.bisections = st_bisections;
-      if (!(st_bound > 0)) throw std::invalid_argument("--speed-bound must be > 0");
-      c.speed_bound = st_bound;
-      c.out_dir = st_args.out.empty() ? std::filesystem::path("results/stability") : std::filesystem::path(st_args.out);
+      c.speed_bound = wl::positive_option("--speed-bound", st_bound);
+      c.out_dir = wl::output_folder(st->count("--out") ? std::optional(st_args.out) : std::nullopt, "results/stability");
       const auto r = wl::run_stability(c);
       std::cerr << "weavelab: stability: " << r.rows.size() << " cells in " << r.wall_s << " s; results in "
                 << c.out_dir.string() << "\n";
@@ -261,37 +260,23 @@ int main(int argc, char** argv) {
     if (!fem_params.empty()) opt.overrides["fem.parameter_file"] = fem_params;
     opt.model = model;
     opt.progress = !quiet;
-    if (!integrator.empty()) {
-      scene.integrator = integrator;
-      opt.overrides["integrator"] = integrator;
-    }
-    if (dt > 0) {
-      scene.dt_s = dt;
-      opt.overrides["dt_s"] = std::to_string(dt);
-    }
-    if (duration > 0) {
-      scene.duration_s = duration;
-      opt.overrides["duration_s"] = std::to_string(duration);
-    }
-    if (run->count("--rtol")) {
-      if (!(rtol > 0 && rtol < 1)) throw std::invalid_argument("--rtol must be in (0, 1), got " + std::to_string(rtol));
-      adaptive = true;
-      scene.rtol = rtol;
-      scene.atol = 1e-3 * rtol;
-      opt.overrides["rtol"] = std::to_string(rtol);
-    }
-    if (adaptive) {
-      scene.adaptive = true;
-      opt.overrides["adaptive"] = "true";
-    }
-    if (run->count("--dt") && dt <= 0) throw std::invalid_argument("--dt must be > 0, got " + std::to_string(dt));
-    if (run->count("--duration") && duration <= 0)
-      throw std::invalid_argument("--duration must be > 0, got " + std::to_string(duration));
-    (void)wl::make_integrator(scene.integrator);  // validates the name before anything is written
-    opt.out_dir = out_dir.empty()
-                      ? std::filesystem::path("results") / std::filesystem::path(scene_path).stem() / model
-                      : std::filesystem::path(out_dir);
+    wl::RunOverrides ov;
+    if (run->count("--integrator")) ov.integrator = integrator;
+    if (run->count("--dt")) ov.dt_s = dt;
+    if (run->count("--duration")) ov.duration_s = duration;
+    if (run->count("--output-interval")) ov.output_interval_s = output_interval;
+    if (run->count("--rtol")) ov.rtol = rtol;
+    ov.adaptive = adaptive;
+    wl::apply_run_overrides(scene, ov, opt.overrides);  // every rule before anything is written
+    opt.out_dir = wl::output_folder(run->count("--out") ? std::optional(out_dir) : std::nullopt,
+                                    std::filesystem::path("results") / std::filesystem::path(scene_path).stem() / model);
+    wl::install_interrupt_handlers();
     wl::RunReport rep = wl::run_scene(scene, opt);
+    if (rep.result.outcome == wl::Outcome::interrupted) {
+      std::cerr << "weavelab: " << rep.result.message << " at t = " << rep.end_time << " s; frames, metrics and summary in "
+                << opt.out_dir.string() << "\n";
+      return wl::interrupted_exit_code(wl::interrupt_signal());
+    }
     if (rep.result.outcome != wl::Outcome::ok) {
       std::cerr << "weavelab: run ended with outcome '" << wl::to_string(rep.result.outcome) << "' at t = " << rep.end_time
                 << " s: " << rep.result.message << " (summary in " << opt.out_dir.string() << ")\n";

@@ -2,15 +2,18 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 
+#include "experiments/driver/interrupt.h"
 #include "experiments/driver/model_factory.h"
 #include "experiments/driver/run_summary.h"
 #include "experiments/output/metrics_csv.h"
 #include "experiments/output/pvd_series.h"
+#include "experiments/output/run_folder.h"
 
 namespace wl {
 namespace {
@@ -37,6 +40,26 @@ class Progress {
   clock::time_point start_, last_;
 };
 
+// The files a run writes (and a rerun into the same folder replaces), with
+// their temporary names: run.pvd, frames/run_NNNNN.vtu, metrics.csv(.part),
+// summary.json.
+bool written_by_a_run(const std::filesystem::path& rel) {
+  const std::string name = rel.filename().string();
+  const std::string base = name.substr(0, name.find(".tmp-"));
+  if (rel.parent_path() == "frames") return base.starts_with("run_") && base.ends_with(".vtu");
+  if (!rel.parent_path().empty()) return false;
+  return base == "run.pvd" || base == "metrics.csv" || base == "metrics.csv.part" || base == "summary.json";
+}
+
+// Thrown from the step callback to end the run after the step a signal arrived in.
+struct Interrupted {};
+
+StepResult interrupted_result() {
+  const int sig = interrupt_signal();
+  return {Outcome::interrupted,
+          std::string("interrupted by ") + (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal")};
+}
+
 }  // namespace
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
@@ -48,7 +71,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   iopt.rtol = scene.rtol;
   iopt.atol = scene.atol;
 
-  std::filesystem::create_directories(options.out_dir);
+  RunFolder folder(options.out_dir, written_by_a_run);
   PvdSeries series(options.out_dir, "run");
   MetricsCsv metrics(options.out_dir / "metrics.csv",
                      {"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters", "step_wall_s"});
@@ -69,6 +92,7 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   integrator->on_step = [&](const StepRecord& r) {
     metrics_row(r.t, r.nonlinear_iters, r.wall_s);
     progress.update(r.t, integrator->stats().steps);
+    if (interrupt_signal()) throw Interrupted{};
   };
 
   RunReport rep;
@@ -76,15 +100,23 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   series.add(model->frame(0.0, integrator->q(), integrator->v()));
   rep.frames = 1;
   const int outputs = static_cast<int>(std::llround(scene.duration_s / scene.output_interval_s));
+  auto advance = [&](double t_out) {
+    if (interrupt_signal()) return interrupted_result();
+    try {
+      return integrator->advance_to(t_out);
+    } catch (const Interrupted&) {
+      return interrupted_result();
+    }
+  };
   for (int k = 1; k <= outputs; ++k) {
     const double t_out = std::min(scene.duration_s, k * scene.output_interval_s);
-    rep.result = integrator->advance_to(t_out);
+    rep.result = advance(t_out);
     if (rep.result.outcome != Outcome::ok) break;
     series.add(model->frame(integrator->t(), integrator->q(), integrator->v()));
     ++rep.frames;
   }
   if (rep.result.outcome == Outcome::ok && integrator->t() < scene.duration_s - 1e-12) {
-    rep.result = integrator->advance_to(scene.duration_s);
+    rep.result = advance(scene.duration_s);
     if (rep.result.outcome == Outcome::ok) {
       series.add(model->frame(integrator->t(), integrator->q(), integrator->v()));
       ++rep.frames;

@@ -9,7 +9,7 @@ namespace wl {
 void write_run_summary(const std::filesystem::path& path, const Scene& scene, const RunOptions& options,
                        const Model& model, const Integrator& integrator, const RunReport& report) {
   Json j = Json::object();
-  Json s = scene_json(scene.source, read_text_file(scene.source), scene, options.overrides);
+  Json s = scene_json(scene.source, scene.text, scene, options.overrides);
   s.set("dt_s", scene.dt_s);
   j.set("scene", s);
   Json m(model.describe());

@@ -56,9 +56,9 @@ inline constexpr const char* kFemWarpBending = "fem.warp_bending_N_m";
 inline constexpr const char* kFemWeftBending = "fem.weft_bending_N_m";
 inline constexpr const char* kFemArealDensity = "fem.areal_density_kg_per_m2";
 
-class FemParameterError : public std::runtime_error {
+class FemParameterError : public std::invalid_argument {  // bad input: exit 2
  public:
-  using std::runtime_error::runtime_error;
+  using std::invalid_argument::invalid_argument;
 };
 
 // Step 1 alone.

@@ -130,8 +130,8 @@ class VtuParser {
         fail(line, "appended (binary) data; only ASCII VTU is read: convert with `meshio convert IN OUT.vtu --ascii`");
       } else if (name == "Piece") {
         if (++pieces_ > 1) fail(line, "more than one Piece; expected a single-piece mesh");
-        points_ = std::atoi(attribute(tag, "NumberOfPoints").c_str());
-        cells_ = std::atoi(attribute(tag, "NumberOfCells").c_str());
+        points_ = count(tag, "NumberOfPoints", line);
+        cells_ = count(tag, "NumberOfCells", line);
         piece_line_ = line;
       } else if (name == "DataArray") {
         XmlArray a;
@@ -166,6 +166,16 @@ class VtuParser {
     if (pieces_ == 0) fail(1, "no <Piece> element");
   }
 
+  // A Piece's NumberOfPoints / NumberOfCells: an integer in [1, 10^8].
+  int count(const std::string& tag, const std::string& key, int line) const {
+    const std::string text = attribute(tag, key);
+    char* end = nullptr;
+    const long long n = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || n < 1 || n > 100000000)
+      fail(line, "Piece " + key + "=\"" + text + "\", expected an integer from 1 to 100000000");
+    return static_cast<int>(n);
+  }
+
   const XmlArray* find(const std::string& section, const std::string& name, bool any_name = false) const {
     for (const auto& a : arrays_)
       if (a.section == section && (any_name || a.name == name)) return &a;
@@ -176,6 +186,9 @@ class VtuParser {
   std::vector<XmlArray> arrays_;
   int pieces_ = 0, points_ = 0, cells_ = 0, piece_line_ = 0;
 };
+
+// An integer-valued entry as int; -1 for anything else (NaN, fractions, out of range).
+int whole(double x) { return x == std::floor(x) && x >= 0 && x < 2147483647.0 ? static_cast<int>(x) : -1; }
 
 }  // namespace
 
@@ -196,7 +209,7 @@ FemMesh read_vtu_mesh(const std::string& path) {
   if (!uv)
     p.fail(p.piece_line_, "no point-data array \"uv\" (rest material coordinates in metres, 2 components); "
                           "see experiments/scenes/README_fem.md");
-  if (uv->components < 2 || static_cast<int>(uv->values.size()) != uv->components * n)
+  if (uv->components < 2 || static_cast<long long>(uv->values.size()) != static_cast<long long>(uv->components) * n)
     p.fail(uv->line, "point data '" + uv->name + "': expected " + std::to_string(n) + " entries × 2 components, got " +
                          std::to_string(uv->values.size()) + " values in " + std::to_string(uv->components) +
                          " components");
@@ -214,16 +227,16 @@ FemMesh read_vtu_mesh(const std::string& path) {
   }
   int start = 0;
   for (int c = 0; c < p.cells_; ++c) {
-    const int type = static_cast<int>(types->values[c]);
+    const int type = whole(types->values[c]);
     if (type != 5)
       p.fail(types->line, "cell " + std::to_string(c) + " has VTK type " + std::to_string(type) +
                               ", expected 5 (triangle); triangulate the mesh first");
-    const int end = static_cast<int>(offs->values[c]);
+    const int end = whole(offs->values[c]);
     if (end - start != 3 || end > static_cast<int>(conn->values.size()))
       p.fail(offs->line, "cell " + std::to_string(c) + ": offsets inconsistent with triangles");
     std::array<int, 3> t;
     for (int k = 0; k < 3; ++k) {
-      t[k] = static_cast<int>(conn->values[start + k]);
+      t[k] = whole(conn->values[start + k]);
       if (t[k] < 0 || t[k] >= n)
         p.fail(conn->line, "cell " + std::to_string(c) + " refers to point " + std::to_string(t[k]) + " of " +
                                std::to_string(n));
@@ -240,6 +253,11 @@ FemMesh read_vtu_mesh(const std::string& path) {
     m.triangles.push_back(t);
   }
   if (m.triangles.empty()) p.fail(p.piece_line_, "the mesh has no triangles");
+  std::vector<char> used(n, 0);
+  for (const auto& t : m.triangles)
+    for (int v : t) used[v] = 1;
+  if (const auto it = std::find(used.begin(), used.end(), 0); it != used.end())
+    p.fail(conn->line, "point " + std::to_string(it - used.begin()) + " is used by no triangle (remove unused points)");
   return m;
 }
 

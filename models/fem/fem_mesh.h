@@ -32,9 +32,9 @@
 namespace wl {
 
 // A mesh file that cannot be used; what() reads "<file>:<line>: <problem>".
-class FemMeshError : public std::runtime_error {
+class FemMeshError : public std::invalid_argument {  // bad input: exit 2
  public:
-  using std::runtime_error::runtime_error;
+  using std::invalid_argument::invalid_argument;
 };
 
 struct FemMesh {

@@ -25,8 +25,8 @@
 //   [contact]
 //     shear_model, friction_model      "gong" | "cirio"
 //     shear_modulus_Pa, friction_coefficient, friction_stiffness_N_per_m,
-//     friction_damping_Ns_per_m, parallel_stiffness_N_per_m2, lock_exponent   ≥ 0
-//     tanh_sharpness_per_m, lock_sigma                                        > 0
+//     friction_damping_Ns_per_m, parallel_stiffness_N_per_m2                  ≥ 0
+//     tanh_sharpness_per_m, lock_exponent, lock_sigma                         > 0
 //   [pose]
 //     kind = "flat" | "upright";  height_m (any number)
 //   [[pins]]      node = [i, j]                 (0 ≤ i < wefts, 0 ≤ j < warps)
@@ -35,8 +35,9 @@
 //   [gravity]     acceleration_m_per_s2 = [x, y, z]
 //   [wind]        velocity_m_per_s = [x, y, z]; air_density_kg_per_m3 ≥ 0; drag_Ns_per_m3 ≥ 0
 //   [time]
-//     duration_s > 0; 0 < dt_s ≤ duration_s; output_interval_s ≥ dt_s
-//     integrator (non-empty string; the CLI checks the name), adaptive (bool)
+//     duration_s, dt_s, output_interval_s > 0 with dt_s ≤ output_interval_s ≤ duration_s,
+//     at most 1e7 fixed steps (duration_s / dt_s) and 1e5 frames (time_settings_violation)
+//     integrator (non-empty string; the run checks the name), adaptive (bool)
 //     rtol in (0, 1), atol > 0
 //   [terms]       stretch, bending, shear, parallel_contact, friction, gravity, wind,
 //                 handles, inertia (bools)
@@ -212,7 +213,7 @@ void read_contact(TableReader& top, Scene& s) {
   c->read_number("friction_damping_Ns_per_m", p.friction_damping_Ns_per_m, "a number ≥ 0 (N·s/m)", non_negative);
   c->read_number("tanh_sharpness_per_m", p.tanh_sharpness_per_m, "a number > 0 (1/m)", positive);
   c->read_number("parallel_stiffness_N_per_m2", p.parallel_stiffness_N_per_m2, "a number ≥ 0 (N/m²)", non_negative);
-  c->read_number("lock_exponent", p.lock_exponent, "a number ≥ 0", non_negative);
+  c->read_number("lock_exponent", p.lock_exponent, "a number > 0", positive);
   c->read_number("lock_sigma", p.lock_sigma, "a number > 0", positive);
   c->finish();
 }
@@ -311,24 +312,24 @@ void read_loads(TableReader& top, Scene& s) {
 
 void read_time(TableReader& top, Scene& s) {
   auto t = top.subtable("time");
-  if (!t) return;
-  t->read_number("duration_s", s.duration_s, "a number > 0 (s)", positive);
-  t->read_number("dt_s", s.dt_s, "a number > 0 (s)", positive);
-  if (s.dt_s > s.duration_s)
-    t->fail_key(t->table().get("dt_s") ? "dt_s" : "duration_s",
-                t->table().get("dt_s") ? "a number > 0 and ≤ time.duration_s" + eq(s.duration_s)
-                                       : "a number ≥ time.dt_s" + eq(s.dt_s),
-                format_number(s.duration_s));
-  t->read_number("output_interval_s", s.output_interval_s, "a number ≥ time.dt_s" + eq(s.dt_s),
-                 [&](double x) { return x >= s.dt_s; });
-  if (s.output_interval_s < s.dt_s)  // only reachable with the default interval
-    t->fail_key("dt_s", "a number ≤ time.output_interval_s" + eq(s.output_interval_s), format_number(s.dt_s));
-  t->read_string("integrator", s.integrator, "a non-empty integrator name (string)",
-                 [](const std::string& x) { return !x.empty(); });
-  t->read_bool("adaptive", s.adaptive);
-  t->read_number("rtol", s.rtol, "a number > 0 and < 1", [](double x) { return x > 0.0 && x < 1.0; });
-  t->read_number("atol", s.atol, "a number > 0", positive);
-  t->finish();
+  if (t) {
+    t->read_number("duration_s", s.duration_s, "a number > 0 (s)", positive);
+    t->read_number("dt_s", s.dt_s, "a number > 0 (s)", positive);
+    t->read_number("output_interval_s", s.output_interval_s, "a number > 0 (s)", positive);
+    t->read_string("integrator", s.integrator, "a non-empty integrator name (string)",
+                   [](const std::string& x) { return !x.empty(); });
+    t->read_bool("adaptive", s.adaptive);
+    t->read_number("rtol", s.rtol, "a number > 0 and < 1", [](double x) { return x > 0.0 && x < 1.0; });
+    t->read_number("atol", s.atol, "a number > 0", positive);
+    t->finish();
+    s.key_lines["time"] = t->line();
+    for (auto&& [k, v] : t->table()) s.key_lines[t->key_path(k.str())] = line_of(v);
+  }
+  const auto bad = time_settings_violation(s, [&](const std::string& key) { return s.key_lines.count(key) ? 1 : 0; });
+  if (!bad) return;
+  const auto line = s.key_lines.find(bad->key);
+  const std::string value = line != s.key_lines.end() ? bad->value : bad->value + " (the default)";
+  top.source().fail(line != s.key_lines.end() ? line->second : t ? t->line() : 1, bad->key, value, bad->expected);
 }
 
 void read_terms(TableReader& top, Scene& s) {
@@ -372,6 +373,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
 
   Scene s;
   s.source = source_name;
+  s.text = toml_text;
   TableReader top(src, root, "");
   // Unknown tables first: a misspelt table name is the likeliest error.
   top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "time", "terms", "fem"});

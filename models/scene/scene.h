@@ -2,6 +2,7 @@
 // file by load_scene(); every field has its unit in its name or comment.
 #pragma once
 #include <array>
+#include <functional>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -63,6 +64,10 @@ struct TermSwitches {
 
 struct Scene {
   std::string source;  // file it came from
+  std::string text;    // its text, read once at load (what the run simulates)
+  // Line of each key written in the file's [time] table ("time.dt_s" → 12) and
+  // of the table itself ("time"); absent keys are absent here.
+  std::map<std::string, int> key_lines;
 
   // Woven cloth
   int warps = 17;  // warp yarns (each runs along u, j fixed)
@@ -115,6 +120,23 @@ class SceneError : public std::runtime_error {
   std::string file, key, value, expected;
   int line;
 };
+
+// The rules of a run's time settings, shared by the scene reader and the
+// command-line overrides: duration_s, dt_s, output_interval_s finite and > 0
+// with dt_s ≤ output_interval_s ≤ duration_s; at most kMaxSteps fixed steps
+// (duration_s / dt_s, fixed-step runs) and kMaxFrames output frames; rtol in
+// (0, 1), atol finite and > 0.
+inline constexpr double kMaxSteps = 1e7;
+inline constexpr double kMaxFrames = 1e5;
+struct SettingViolation {
+  std::string key;       // "time.dt_s"
+  std::string value;     // the value, shortest round-trip form
+  std::string expected;  // what the rule wants
+};
+// The first violated rule, or nothing. `rank(key)` says where a key's value
+// came from (0 default, 1 scene file, 2 command line); a rule between two keys
+// blames the one with the higher rank (the first one on a tie).
+std::optional<SettingViolation> time_settings_violation(const Scene& scene, const std::function<int(const std::string&)>& rank);
 
 // Reads and validates a scene; throws SceneError (missing file: line 0).
 // The format is documented in scene.cpp and experiments/scenes/README.md.

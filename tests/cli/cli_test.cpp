@@ -101,6 +101,95 @@ TEST_F(Cli, ShortRunWritesFramesMetricsAndSummary) {
   EXPECT_TRUE(fs::exists(out / "frames"));
 }
 
+// Bad inputs of every kind: each is exit 2 with a located message (the scene,
+// mesh or parameter file with its line, or the option) and writes nothing.
+TEST_F(Cli, EveryBadInputIsALocatedExit2) {
+  const std::string good = "[cloth]\nwarps = 5\nwefts = 5\n[time]\nduration_s = 0.02\n";
+  std::ofstream(dir_ / "good.toml") << good;
+  const std::string mesh_head =
+      "<VTKFile type=\"UnstructuredGrid\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"3\" NumberOfCells=\"1\">\n";
+  auto mesh = [&](const std::string& points, const std::string& conn, const std::string& type, const std::string& uv) {
+    return mesh_head + "<Points>\n<DataArray Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n" + points +
+           "\n</DataArray>\n</Points>\n<Cells>\n<DataArray Name=\"connectivity\" format=\"ascii\">\n" + conn +
+           "\n</DataArray>\n<DataArray Name=\"offsets\" format=\"ascii\">\n3\n</DataArray>\n"
+           "<DataArray Name=\"types\" format=\"ascii\">\n" + type + "\n</DataArray>\n</Cells>\n<PointData>\n"
+           "<DataArray Name=\"uv\" NumberOfComponents=\"2\" format=\"ascii\">\n" + uv +
+           "\n</DataArray>\n</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  };
+  const std::string pts = "0 0 0 0.004 0 0 0 0.004 0", conn = "0 1 2", uv = "0 0 0.004 0 0 0.004";
+  struct Case {
+    std::string args;           // after `run SCENE`
+    std::string scene;          // scene text ("" = good.toml)
+    std::string file, content;  // an extra input file the scene names
+    std::string where;          // expected in the message: "<file>:<line>" or the option
+  };
+  const std::vector<Case> cases = {
+      {"--dt 1e8", "", "", "", "'--dt'"},
+      {"--dt inf", "", "", "", "'--dt'"},
+      {"--dt nan", "", "", "", "'--dt'"},
+      {"--dt -1", "", "", "", "--dt"},
+      {"--dt 1e-12", "", "", "", "'--dt'"},
+      {"--dt 1 --duration 0.01", "", "", "", "'--dt'"},
+      {"--dt 0.05 --duration 1", "", "", "", "'--dt'"},
+      {"--duration nan", "", "", "", "'--duration'"},
+      {"--duration inf", "", "", "", "'--duration'"},
+      {"--duration 0", "", "", "", "'--duration'"},
+      {"--duration 1e9", "", "", "", "'--duration'"},
+      {"--output-interval 1", "", "", "", "'--output-interval'"},
+      {"--rtol 2", "", "", "", "'--rtol'"},
+      {"--rtol nan", "", "", "", "'--rtol'"},
+      {"--integrator foo", "", "", "", "'--integrator'"},
+      {"--integrator ''", "", "", "", "'--integrator'"},
+      {"--out ''", "", "", "", "'--out'"},
+      {"--model cloth", "", "", "", "cloth"},
+      {"--dt abc", "", "", "", "--dt"},
+      {"", "[time]\nintegrator = \"foo\"\n", "", "", "bad.toml:2"},
+      {"", "[time]\ndt_s = 0.5\n", "", "", "bad.toml:2"},
+      {"", "[time]\nduration_s = 0.001\n", "", "", "bad.toml:2"},
+      {"", "[time]\ndt_s = 1e-10\n", "", "", "bad.toml:2"},
+      {"", "[time]\nduration_s = nan\n", "", "", "bad.toml:2"},
+      {"", "[contact]\nlock_exponent = 0\n", "", "", "bad.toml:2"},
+      {"", "[cloth]\nwarps = 2\n", "", "", "bad.toml:2"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu", "", "m.vtu:1"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",
+       mesh("0 nan 0 0.004 0 0 0 0.004 0", conn, "5", uv), "m.vtu:5"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu", mesh(pts, conn, "9", uv),
+       "m.vtu:"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",
+       mesh(pts, "0 1 5", "5", uv), "m.vtu:"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",
+       mesh(pts, "0 1 1", "5", uv), "m.vtu:"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",
+       mesh_head + "<Points>\n<DataArray Name=\"Points\" NumberOfComponents=\"3\" format=\"binary\">\n", "m.vtu:5"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nparameter_file = \"p.toml\"\n", "p.toml",
+       "shear_N_per_m = -1\n", "p.toml:1"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nparameter_file = \"p.toml\"\n", "p.toml",
+       "\nshear_modulus = 1\n", "p.toml:2"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nparameter_file = \"p.toml\"\n", "p.toml", "x = [",
+       "p.toml:1"},
+  };
+  int rejected = 0, located = 0, written = 0;
+  for (const Case& c : cases) {
+    if (!c.file.empty()) std::ofstream(dir_ / c.file) << c.content;
+    const fs::path scene = c.scene.empty() ? dir_ / "good.toml" : write_scene(c.scene);
+    const fs::path out = dir_ / "out";
+    const std::string out_arg = c.args.find("--out") == std::string::npos ? " --out '" + out.string() + "'" : "";
+    const Result r = run_cli("run '" + scene.string() + "' --quiet " + c.args + out_arg, dir_);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << c.scene << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.where), std::string::npos) << "missing '" << c.where << "' in: " << r.output;
+    rejected += r.code == 2;
+    located += r.output.find(c.where) != std::string::npos;
+    if (fs::exists(out)) {
+      ++written;
+      ADD_FAILURE() << "output written for: " << c.args << "\n" << c.scene;
+      fs::remove_all(out);
+    }
+    if (!c.file.empty()) fs::remove(dir_ / c.file);
+  }
+  std::cout << "bad inputs tried " << cases.size() << ", rejected with exit 2 " << rejected << ", located " << located
+            << ", output folders written " << written << "\n";
+}
+
 }  // namespace
 
 // ---- calibrate and --fem-params ---------------------------------------------

@@ -147,6 +147,45 @@ TEST_F(VtuFile, BadFilesGiveClearErrors) {
   }
 }
 
+// `text` with the first occurrence of `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+std::string vtu_with(const std::string& from, const std::string& to) { return replaced(vtu(), from, to); }
+
+TEST_F(VtuFile, BrokenMeshesAreLocatedErrors) {
+  struct Case {
+    std::string text, fragment;
+  };
+  const Case cases[] = {
+      {"", ":1: no <UnstructuredGrid>"},
+      {vtu().substr(0, vtu().find("</DataArray>")), "is not closed"},
+      {vtu_with("0 0 1  0.01", "0 nan 1  0.01"), "point 0 has a non-finite"},
+      {vtu_with("0 1 2 0 3 2", "0 1 2 0 7 2"), "refers to point"},
+      {vtu_with("0 1 2 0 3 2", "0 1 2 0 1.5 2"), "refers to point"},
+      {vtu_with("NumberOfPoints=\"4\"", "NumberOfPoints=\"99999999999\""), ":5: Piece NumberOfPoints"},
+      {vtu_with("NumberOfPoints=\"4\"", "NumberOfPoints=\"-4\""), ":5: Piece NumberOfPoints"},
+      {vtu_with("0 0.01 1\n", "0 0.01 1  0.5 0.5 1\n"), ":7: Points: expected"},
+      // a fifth point no triangle uses
+      {replaced(replaced(vtu_with("NumberOfPoints=\"4\"", "NumberOfPoints=\"5\""), "0 0.01 1\n", "0 0.01 1 0.5 0.5 1\n"),
+                "0 1.0e-2", "0 1.0e-2 0.005 0.005"),
+       "point 4 is used by no triangle"},
+      {vtu_with("0.01 0.01 0 1.0e-2", "0.01 0 0 1.0e-2"), "degenerate"},
+  };
+  for (const Case& c : cases) {
+    try {
+      read_vtu_mesh(write(c.text));
+      ADD_FAILURE() << "accepted:\n" << c.text;
+    } catch (const FemMeshError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.fragment), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).rfind(path_ + ":", 0), 0u) << e.what();
+      EXPECT_TRUE(dynamic_cast<const std::invalid_argument*>(&e)) << "a bad mesh is bad input (exit 2)";
+    }
+  }
+}
+
 TEST_F(VtuFile, ModelFromMeshFileMapsPinsToNearestVertex) {
   Scene s = test::fem_scene(11, 11);  // L = 1 mm: crossing (10, 10) at uv (0.01, 0.01)
   s.fem.mesh_file = write(vtu());

@@ -1,0 +1,113 @@
+#include "experiments/driver/run_settings.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "integrators/integrator.h"
+
+namespace wl {
+namespace {
+
+std::string shortest(double x) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, res.ptr);
+}
+
+// Scene key → (command-line option, key in the override record).
+struct Overridable {
+  const char* key;
+  const char* option;
+  const char* record;
+};
+constexpr Overridable kOverridable[] = {
+    {"time.duration_s", "--duration", "duration_s"}, {"time.dt_s", "--dt", "dt_s"},
+    {"time.output_interval_s", "--output-interval", "output_interval_s"}, {"time.rtol", "--rtol", "rtol"},                 {"time.atol", "--rtol", "rtol"},
+    {"time.integrator", "--integrator", "integrator"}, {"time.adaptive", "--adaptive", "adaptive"},
+};
+
+const Overridable* overridden(const std::string& key, const std::map<std::string, std::string>& record) {
+  for (const auto& o : kOverridable)
+    if (key == o.key && record.count(o.record)) return &o;
+  return nullptr;
+}
+
+[[noreturn]] void fail(const Scene& scene, const std::map<std::string, std::string>& record, const std::string& key,
+                       const std::string& value, const std::string& expected) {
+  if (const Overridable* o = overridden(key, record)) throw SettingError(o->option, value, expected);
+  const auto line = scene.key_lines.find(key);
+  if (line != scene.key_lines.end()) throw SceneError(scene.source, line->second, key, value, expected);
+  const auto table = scene.key_lines.find(key.substr(0, key.find('.')));
+  throw SceneError(scene.source, table != scene.key_lines.end() ? table->second : 1, key, value + " (the default)",
+                   expected);
+}
+
+}  // namespace
+
+SettingError::SettingError(const std::string& option, const std::string& value, const std::string& expected)
+    : std::invalid_argument("option '" + option + "': got " + value + ", expected " + expected) {}
+
+void check_run_settings(const Scene& scene, const std::map<std::string, std::string>& record) {
+  const auto rank = [&](const std::string& key) {
+    return overridden(key, record) ? 2 : scene.key_lines.count(key) ? 1 : 0;
+  };
+  if (const auto bad = time_settings_violation(scene, rank)) fail(scene, record, bad->key, bad->value, bad->expected);
+  const auto names = integrator_names();
+  if (std::find(names.begin(), names.end(), scene.integrator) == names.end()) {
+    std::string known;
+    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+    fail(scene, record, "time.integrator", "\"" + scene.integrator + "\"", "one of " + known);
+  }
+}
+
+void apply_run_overrides(Scene& scene, const RunOverrides& o, std::map<std::string, std::string>& record) {
+  if (o.integrator) {
+    scene.integrator = *o.integrator;
+    record["integrator"] = *o.integrator;
+  }
+  if (o.dt_s) {
+    scene.dt_s = *o.dt_s;
+    record["dt_s"] = shortest(*o.dt_s);
+  }
+  if (o.duration_s) {
+    scene.duration_s = *o.duration_s;
+    record["duration_s"] = shortest(*o.duration_s);
+  }
+  if (o.output_interval_s) {
+    scene.output_interval_s = *o.output_interval_s;
+    record["output_interval_s"] = shortest(*o.output_interval_s);
+  }
+  if (o.rtol) {
+    scene.adaptive = true;
+    scene.rtol = *o.rtol;
+    scene.atol = 1e-3 * *o.rtol;
+    record["rtol"] = shortest(*o.rtol);
+  }
+  if (o.adaptive || o.rtol) {
+    scene.adaptive = true;
+    record["adaptive"] = "true";
+  }
+  check_run_settings(scene, record);
+}
+
+void apply_duration_override(Scene& scene, double duration_s, std::map<std::string, std::string>& record) {
+  scene.duration_s = duration_s;
+  record["duration_s"] = shortest(duration_s);
+  const auto bad = time_settings_violation(
+      scene, [&](const std::string& key) { return key == "time.duration_s" ? 2 : scene.key_lines.count(key) ? 1 : 0; });
+  if (bad) fail(scene, record, bad->key, bad->value, bad->expected);
+}
+
+double positive_option(const std::string& option, double value) {
+  if (!(std::isfinite(value) && value > 0.0)) throw SettingError(option, shortest(value), "a finite number > 0");
+  return value;
+}
+
+std::filesystem::path output_folder(const std::optional<std::string>& given, const std::filesystem::path& fallback) {
+  if (!given) return fallback;
+  if (given->empty()) throw SettingError("--out", "''", "a non-empty folder path");
+  return *given;
+}
+
+}  // namespace wl

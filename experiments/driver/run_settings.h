@@ -1,0 +1,49 @@
+// Command-line values that replace a scene's settings, checked by the same
+// rules as the scene file (time_settings_violation in models/scene/scene.h)
+// plus the ones only the driver can check (the integrator name). A violation
+// is a SettingError (exit 2) naming the option or the scene file, line and key,
+// the value and what was expected; nothing has been written then.
+#pragma once
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "models/scene/scene.h"
+
+namespace wl {
+
+// A bad command-line value: what() reads
+//   "option '--dt': got nan, expected a finite number > 0 (s)".
+class SettingError : public std::invalid_argument {
+ public:
+  SettingError(const std::string& option, const std::string& value, const std::string& expected);
+};
+
+// Overrides of `weavelab run` (absent = the scene's value).
+struct RunOverrides {
+  std::optional<std::string> integrator;
+  std::optional<double> dt_s, duration_s, output_interval_s, rtol;  // --rtol implies adaptive, atol = 1e-3 rtol
+  bool adaptive = false;
+};
+
+// Applies the overrides to `scene`, records them in `record` (scene key →
+// value, as the summary lists them) and checks the result with check_run_settings.
+void apply_run_overrides(Scene& scene, const RunOverrides& overrides, std::map<std::string, std::string>& record);
+
+// Checks a scene's run settings: the time rules and the integrator name. A
+// violated rule names the command-line option when `record` holds its key
+// (SettingError), else the scene's file and line (SceneError).
+void check_run_settings(const Scene& scene, const std::map<std::string, std::string>& record);
+
+// --duration of the experiments: the same rules, recorded as "duration_s".
+void apply_duration_override(Scene& scene, double duration_s, std::map<std::string, std::string>& record);
+
+// A finite number > 0 for a plain option (e.g. --budget); SettingError otherwise.
+double positive_option(const std::string& option, double value);
+
+// The --out folder: `given` when set (an empty path is a SettingError), else `fallback`.
+std::filesystem::path output_folder(const std::optional<std::string>& given, const std::filesystem::path& fallback);
+
+}  // namespace wl

@@ -1,0 +1,120 @@
+// Command-line overrides obey the scene's rules and name the option.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "experiments/driver/run_settings.h"
+
+namespace wl {
+namespace {
+
+const std::string kScene = "[cloth]\nwarps = 5\nwefts = 5\n[time]\nduration_s = 0.1\ndt_s = 0.001\n";
+
+// The SettingError message of applying `o` to the scene above ("" when accepted).
+std::string rejection(const RunOverrides& o, const std::string& text = kScene) {
+  Scene s = parse_scene(text, "s.toml");
+  std::map<std::string, std::string> record;
+  try {
+    apply_run_overrides(s, o, record);
+  } catch (const SettingError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RunSettings, BadOverridesNameOptionValueAndRule) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  struct Case {
+    RunOverrides o;
+    std::string option, value, expected;
+  };
+  std::vector<Case> cases;
+  auto add = [&](auto set, std::string option, std::string value, std::string expected) {
+    RunOverrides o;
+    set(o);
+    cases.push_back({o, option, value, expected});
+  };
+  add([&](RunOverrides& o) { o.dt_s = 1e8; }, "--dt", "1e+08", "≤ time.duration_s");
+  add([&](RunOverrides& o) { o.dt_s = inf; }, "--dt", "inf", "finite number > 0");
+  add([&](RunOverrides& o) { o.dt_s = nan; }, "--dt", "nan", "finite number > 0");
+  add([&](RunOverrides& o) { o.dt_s = -1e-3; }, "--dt", "-0.001", "finite number > 0");
+  add([&](RunOverrides& o) { o.dt_s = 0.02; }, "--dt", "0.02", "≤ time.output_interval_s");
+  add([&](RunOverrides& o) { o.dt_s = 1e-12; }, "--dt", "1e-12", "at most");
+  add([&](RunOverrides& o) { o.duration_s = nan; }, "--duration", "nan", "finite number > 0");
+  add([&](RunOverrides& o) { o.duration_s = inf; }, "--duration", "inf", "finite number > 0");
+  add([&](RunOverrides& o) { o.duration_s = 0.005; }, "--duration", "0.005", "≥ time.output_interval_s");
+  add([&](RunOverrides& o) { o.duration_s = 1e6; }, "--duration", "1000000", "at most");
+  add([&](RunOverrides& o) { o.output_interval_s = 1.0; }, "--output-interval", "1", "≤ time.duration_s");
+  add([&](RunOverrides& o) { o.output_interval_s = 1e-4; }, "--output-interval", "0.0001", "≥ time.dt_s");
+  add([&](RunOverrides& o) { o.rtol = 2.0; }, "--rtol", "2", "< 1");
+  add([&](RunOverrides& o) { o.rtol = nan; }, "--rtol", "nan", "< 1");
+  add([&](RunOverrides& o) { o.integrator = "rk99"; }, "--integrator", "\"rk99\"", "one of be-linear");
+  add([&](RunOverrides& o) { o.integrator = ""; }, "--integrator", "\"\"", "one of");
+  add([&](RunOverrides& o) { o.dt_s = 1; o.duration_s = 0.01; }, "--dt", "1", "≤ time.duration_s");
+  for (const Case& c : cases) {
+    const std::string msg = rejection(c.o);
+    EXPECT_EQ(msg.rfind("option '" + c.option + "': got ", 0), 0u) << c.option << " " << c.value << ": " << msg;
+    EXPECT_NE(msg.find("got " + c.value + ","), std::string::npos) << msg;
+    EXPECT_NE(msg.find(c.expected), std::string::npos) << msg;
+  }
+}
+
+TEST(RunSettings, GoodOverridesAreAppliedAndRecorded) {
+  Scene s = parse_scene(kScene, "s.toml");
+  std::map<std::string, std::string> record;
+  RunOverrides o;
+  o.dt_s = 2e-3;
+  o.duration_s = 0.05;
+  o.rtol = 1e-5;
+  o.integrator = "ida";
+  apply_run_overrides(s, o, record);
+  EXPECT_EQ(s.dt_s, 2e-3);
+  EXPECT_EQ(s.duration_s, 0.05);
+  EXPECT_TRUE(s.adaptive);
+  EXPECT_EQ(s.rtol, 1e-5);
+  EXPECT_EQ(s.atol, 1e-3 * 1e-5);
+  EXPECT_EQ(s.integrator, "ida");
+  // Recorded exactly: the strings read back to the values.
+  EXPECT_EQ(std::stod(record.at("dt_s")), 2e-3);
+  EXPECT_EQ(std::stod(record.at("duration_s")), 0.05);
+  EXPECT_EQ(std::stod(record.at("rtol")), 1e-5);
+  EXPECT_EQ(record.at("adaptive"), "true");
+  EXPECT_EQ(record.at("integrator"), "ida");
+}
+
+TEST(RunSettings, SceneValuesKeepTheirLocation) {
+  // An integrator named in the scene is checked with its file and line.
+  const std::string text = kScene + "integrator = \"foo\"\n";
+  Scene s = parse_scene(text, "s.toml");
+  std::map<std::string, std::string> record;
+  try {
+    apply_run_overrides(s, {}, record);
+    FAIL() << "unknown integrator accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file, "s.toml");
+    EXPECT_EQ(e.line, 7);
+    EXPECT_EQ(e.key, "time.integrator");
+  }
+  // The override replaces it: no error.
+  RunOverrides o;
+  o.integrator = "be-newton";
+  EXPECT_NO_THROW(apply_run_overrides(s, o, record));
+}
+
+TEST(RunSettings, ExperimentOptions) {
+  Scene s = parse_scene(kScene, "s.toml");
+  std::map<std::string, std::string> record;
+  EXPECT_THROW(apply_duration_override(s, std::numeric_limits<double>::infinity(), record), SettingError);
+  EXPECT_THROW(apply_duration_override(s, 1e-3, record), SettingError);  // below the output interval
+  EXPECT_NO_THROW(apply_duration_override(s, 0.02, record));
+  EXPECT_EQ(s.duration_s, 0.02);
+  EXPECT_THROW(positive_option("--budget", std::numeric_limits<double>::quiet_NaN()), SettingError);
+  EXPECT_THROW(positive_option("--budget", 0.0), SettingError);
+  EXPECT_EQ(positive_option("--budget", 3.0), 3.0);
+  EXPECT_THROW(output_folder(std::string(), "fallback"), SettingError);
+  EXPECT_EQ(output_folder(std::nullopt, "fallback"), "fallback");
+  EXPECT_EQ(output_folder(std::string("x"), "fallback"), "x");
+}
+
+}  // namespace
+}  // namespace wl
