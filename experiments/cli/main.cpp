@@ -167,6 +167,8 @@ int main(int argc, char** argv) {
   calibrate->add_option("--seed", cal.fit.seed, "Seed of the start draws")->capture_default_str();
   calibrate->add_option("--loss", cal.fit.loss, "Robust loss per test curve: none, huber, cauchy")->capture_default_str();
   calibrate->add_flag("--sliding", cal.sliding, "Leave the yarn sliding coordinates free in the tests (default frozen)");
+  calibrate->add_flag("--border-strip", cal.border_strip,
+                      "Continuum with bars for the border yarns' outer half spacing ([fem] border_strip)");
   calibrate->add_option("--validate", cal_validate, "Scene to validate the calibrated continuum on (repeatable)");
   calibrate->add_option("--out", cal_out, "Output folder (default results/calibration/<scene name>)");
   calibrate->add_flag("--quiet", cal_quiet, "No progress on stderr");

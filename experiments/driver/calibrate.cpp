@@ -66,8 +66,9 @@ VariantRun run_continuum_variant(const std::string& name, const Scene& scene, co
   return v;
 }
 
-Scene with_material(Scene s, const FemMaterial& m) {
+Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
   s.fem.parameter_file.clear();
+  s.fem.border_strip = border_strip;
   s.fem.areal_density_kg_per_m2 = m.areal_density_kg_per_m2;
   s.fem.warp_stretch_N_per_m = m.warp_stretch_N_per_m;
   s.fem.weft_stretch_N_per_m = m.weft_stretch_N_per_m;
@@ -107,6 +108,7 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   const int size = std::min(p.scene.warps, p.scene.wefts);
   const int patch = c.patch > 0 ? c.patch : std::max(std::min(size, 33), minimum_patch(p.scene));
   p.test_scene = material_test_scene(p.scene, patch, c.sliding);  // too small: invalid_argument
+  p.test_scene.fem.border_strip = c.border_strip;
   std::vector<std::string> names = c.tests.empty() ? test_names() : c.tests;
   for (const std::string& name : names) {
     const TestKind kind = test_kind(name);  // unknown: invalid_argument
@@ -259,7 +261,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     Json vars = Json::array();
     for (const auto& [name, m] : variants) {
       if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
-      const VariantRun vr = run_continuum_variant(name, with_material(vs, m), yarn, iopt, c.progress);
+      const VariantRun vr = run_continuum_variant(name, with_material(vs, m, c.border_strip && name != "first_guess"), yarn, iopt,
+                                                  c.progress);
       for (size_t k = 0; k < vr.times.size(); ++k)
         vcsv->row({label, name, csv_number(vr.times[k]), csv_number(vr.rms[k]), csv_number(vr.max[k])});
       Json j = Json::object();
@@ -293,6 +296,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
                             {"source_scene_hash", fnv1a(p.scene_text)},
                             {"git_revision", git_revision()},
                             {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
+                            {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene"
+                                                            : "false"},
                             {"residual_rms_relative", rms.str()},
                             {"areal_density", "total yarn mass of the scene over the crossing grid's area"},
                             {"created", utc_now()}});
@@ -303,6 +308,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   j.set("scene_hash", fnv1a(p.scene_text));
   j.set("patch", patch);
   j.set("sliding", c.sliding);
+  j.set("border_strip", c.border_strip);
   Json params = Json::array();
   for (const FittedParameter& fp : out.fit.parameters) {
     Json e = Json::object();

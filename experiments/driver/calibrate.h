@@ -26,6 +26,7 @@ struct CalibrateConfig {
   int patch = 0;                                       // crossings per side; 0 = the scene's size, at most 33
   std::map<std::string, std::vector<double>> ladders;  // per test name; absent = default_ladder()
   bool sliding = false;                                // sliding coordinates free in the tests
+  bool border_strip = false;                           // continuum with [fem] border_strip (tests and validation)
   FitOptions fit;
   std::vector<std::filesystem::path> validate;  // scenes to validate on
   std::filesystem::path out_dir;

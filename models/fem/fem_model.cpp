@@ -5,6 +5,7 @@
 
 #include "models/common/wind.h"
 #include "models/fem/deformation_gradient.h"
+#include "models/fem/terms/border_stretch.h"
 #include "models/fem/terms/hinge_bending.h"
 #include "models/fem/terms/in_plane_shear.h"
 #include "models/fem/terms/lumped_mass.h"
@@ -76,6 +77,22 @@ void FemModel::build() {
     auto t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
                                                 material_.shear_lock_exponent);
     for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
+    terms_.push_back(std::move(t));
+  }
+  if (on.stretch && scene_.fem.border_strip) {
+    // Border edges (one triangle): the outer half spacing of the border yarns (terms/border_stretch.h).
+    std::map<std::pair<int, int>, int> count;
+    for (const auto& tri : mesh_.triangles)
+      for (int k = 0; k < 3; ++k) ++count[std::minmax(tri[k], tri[(k + 1) % 3])];
+    auto t = std::make_unique<BorderStretchTerm>(material_.warp_stretch_N_per_m, material_.weft_stretch_N_per_m,
+                                                 0.5 * scene_.spacing_m);
+    for (const auto& [edge, n] : count) {
+      if (n != 1) continue;
+      const Vec2 d = mesh_.uv[edge.second] - mesh_.uv[edge.first];
+      t->add({3 * edge.first, 3 * edge.first + 1, 3 * edge.first + 2, 3 * edge.second, 3 * edge.second + 1,
+              3 * edge.second + 2},
+             d.norm(), std::abs(d.x()) >= std::abs(d.y()));
+    }
     terms_.push_back(std::move(t));
   }
   if (on.bending && !hinges_.empty()) {

@@ -251,6 +251,7 @@ void read_fem(TableReader& top, Scene& s) {
                  "an existing file, relative to the scene file's directory (looked for " + p.string() + ")");
     *out = p.string();
   }
+  f->read_bool("border_strip", fem.border_strip);
   f->read_number("areal_density_kg_per_m2", fem.areal_density_kg_per_m2, "a number > 0 (kg/m²)", positive);
   f->read_number("warp_stretch_N_per_m", fem.warp_stretch_N_per_m, "a number > 0 (N/m)", positive);
   f->read_number("weft_stretch_N_per_m", fem.weft_stretch_N_per_m, "a number > 0 (N/m)", positive);

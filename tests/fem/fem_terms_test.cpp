@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "models/fem/deformation_gradient.h"
+#include "models/fem/terms/border_stretch.h"
 #include "models/fem/terms/hinge_bending.h"
 #include "models/fem/terms/in_plane_shear.h"
 #include "models/fem/terms/lumped_mass.h"
@@ -231,6 +232,36 @@ TEST(FemTermParameters, BendingDerivativesMatchFiniteDifferences) {
                                                     {1e-7, 1e-5, 1e-14});
     EXPECT_TRUE(r.ok) << r.detail;
   }
+}
+
+TEST(BorderStretchTerm, ForcesAndParameterDerivativesMatchFiniteDifferences) {
+  std::vector<test::LocalState> states;
+  for (double stretch : {1.0001, 1.03, 0.97}) states.push_back({{0.001, 0.002, 0.5, 0.001 + 0.004 * stretch, 0.0025, 0.5001}, std::vector<double>(6, 0.0)});
+  for (bool along_u : {true, false}) {
+    BorderStretchTerm t(120.0, 45.0, 5e-4);
+    t.add({0, 1, 2, 3, 4, 5}, 0.004, along_u);
+    auto r = test::check_element(t, 0, states);
+    EXPECT_TRUE(r.ok) << r.detail;
+    const int k = along_u ? 0 : 1;
+    auto make = [&](double p) {
+      auto b = std::make_unique<BorderStretchTerm>(k == 0 ? p : 120.0, k == 1 ? p : 45.0, 5e-4);
+      b->add({0, 1, 2, 3, 4, 5}, 0.004, along_u);
+      return std::unique_ptr<Term>(std::move(b));
+    };
+    r = test::check_parameter_derivative(make, k == 0 ? 120.0 : 45.0, k, 0, states);
+    EXPECT_TRUE(r.ok) << r.detail;
+  }
+}
+
+TEST(BorderStretchTerm, UniformStretchCarriesHalfASpacingOfMembraneForce) {
+  // A bar of rest length ℓ₀ stretched by ε pulls with K·ε = k·w·ε.
+  BorderStretchTerm t(200.0, 1.0, 5e-4);
+  t.add({0, 1, 2, 3, 4, 5}, 0.002, true);
+  const double q[6] = {0, 0, 0, 0.002 * 1.01, 0, 0};
+  double f[6] = {};
+  t.evaluate(0, q, nullptr, ElementOutput{f});
+  EXPECT_NEAR(f[0], 200.0 * 5e-4 * 0.01, 1e-12);
+  EXPECT_NEAR(f[3], -200.0 * 5e-4 * 0.01, 1e-12);
 }
 
 TEST(LumpedMassTerm, ThirdOfTriangleMassPerVertex) {
