@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 experiments/setup.sh >/dev/null
-out=results/calibration/hanging_wind
+out=${OUT:-results/calibration/hanging_wind}
 build/weavelab calibrate experiments/scenes/hanging_wind.toml --out "$out" \
   --validate experiments/scenes/hanging_wind.toml --validate experiments/scenes/swing_17.toml "$@"
 /usr/bin/python3 experiments/plot_calibration.py "$out"
