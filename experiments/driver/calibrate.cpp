@@ -84,13 +84,6 @@ double mean(const std::vector<double>& x) { return x.empty() ? 0.0 : std::accumu
 double maximum(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end()); }
 double cpu_per_step(const RecordedRun& r) { return r.stats.steps > 0 ? r.cpu_s / r.stats.steps : 0.0; }
 
-std::string fnv1a(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
 
 }  // namespace
 
@@ -255,7 +248,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
         {"first_guess", default_fem_material(vs)}, {"calibrated_stiffness", stiff_only}, {"calibrated", full}};
     Json entry = Json::object();
     entry.set("scene", c.validate[s].string());
-    entry.set("scene_hash", fnv1a(p.validation_texts[s]));
+    entry.set("scene_hash", reference_hash(p.validation_texts[s]));
     entry.set("frames", static_cast<int>(yarn.size()));
     entry.set("yarn_cpu_s_per_step", cpu_per_step(yr));
     Json vars = Json::array();
@@ -293,7 +286,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     rms << (i ? ", " : "") << test_name(curves[i].test.kind) << " " << out.fit.relative_rms[i];
   write_fem_parameter_file((c.out_dir / "params.toml").string(), calibrated,
                            {{"source_scene", c.scene_path.string()},
-                            {"source_scene_hash", fnv1a(p.scene_text)},
+                            {"source_scene_hash", reference_hash(p.scene_text)},
                             {"git_revision", git_revision()},
                             {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
                             {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene"
@@ -305,7 +298,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   // calibration.json
   Json j = Json::object();
   j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
-  j.set("scene_hash", fnv1a(p.scene_text));
+  j.set("scene_hash", reference_hash(p.scene_text));
   j.set("patch", patch);
   j.set("sliding", c.sliding);
   j.set("border_strip", c.border_strip);
