@@ -127,6 +127,8 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   }
   FemMaterial probe;
   for (const std::string& key : c.fit.free) (void)material_value(probe, key);  // unknown: invalid_argument
+  if (c.fit.loss != "none" && c.fit.loss != "huber" && c.fit.loss != "cauchy")
+    throw std::invalid_argument("--loss: got '" + c.fit.loss + "', expected none, huber or cauchy");
   if (c.fit.starts < 1) throw std::invalid_argument("--starts: need at least 1, got " + std::to_string(c.fit.starts));
   (void)fem_material(p.scene);  // a bad parameter file is reported before anything runs
   for (const auto& v : c.validate) {

@@ -208,6 +208,7 @@ TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
       {"--patch 4", "too small for the plain pattern: need at least 6"},
       {"--free shear_N_per_m,color", "unknown FEM parameter 'color'"},
       {"--starts 0", "--starts: need at least 1"},
+      {"--loss weird", "--loss: got 'weird'"},
       {"--validate missing.toml", "missing.toml"},
   };
   for (const auto& [args, fragment] : cases) {
