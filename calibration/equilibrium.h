@@ -47,8 +47,6 @@ class EquilibriumSolver {
   // x = (−K_ff)⁻¹ b_f on the free DoFs (zero on the held DoFs), with the
   // factorization of the last converged solve: dq_f/dp = solve_free(∂f/∂p).
   void solve_free(const Vec& b, Vec& x) const;
-  const std::vector<int>& held() const { return held_; }
-  Model& model() { return model_; }
 
  private:
   double free_norm(const Vec& f) const;
