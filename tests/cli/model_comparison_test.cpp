@@ -1,5 +1,5 @@
-// Issue 3, Tests: "FEM and yarn runs of the same scene produce frames that the
-// comparison can pair". Runs the CLI twice (yarn and fem, be-linear, 20 ms of
+// FEM and yarn runs of the same scene produce frames that the comparison can
+// pair (docs/design.md §7.4). Runs the CLI twice (yarn and fem, be-linear, 20 ms of
 // the hanging cloth) and experiments/compare.py on the two run folders.
 #include <gtest/gtest.h>
 
