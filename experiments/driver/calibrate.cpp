@@ -49,6 +49,7 @@ VariantRun run_continuum_variant(const std::string& name, const Scene& scene, co
     Vec q(3 * f.points.rows());
     for (Eigen::Index i = 0; i < f.points.rows(); ++i) q.segment<3>(3 * i) = f.points.row(i).transpose();
     double sum = 0, mx = 0;
+    int compared = 0;
     const CrossingFrame& y = yarn[k];
     for (Eigen::Index n = 0; n < y.x.rows(); ++n) {
       Vec3 s;
@@ -56,9 +57,10 @@ VariantRun run_continuum_variant(const std::string& name, const Scene& scene, co
       const double d = (s - y.x.row(n).transpose()).norm();
       sum += d * d;
       mx = std::max(mx, d);
+      ++compared;
     }
     v.times.push_back(f.time);
-    v.rms.push_back(std::sqrt(sum / y.x.rows()));
+    v.rms.push_back(compared > 0 ? std::sqrt(sum / compared) : NAN);
     v.max.push_back(mx);
     ++k;
   };
