@@ -1,14 +1,16 @@
 // weavelab command line: `weavelab run SCENE`, `weavelab info SCENE`,
 // `weavelab work-precision SCENE`, `weavelab stability SCENE`,
-// `weavelab calibrate SCENE`.
+// `weavelab calibrate SCENE`, `weavelab fidelity SCENE`.
 // Exit codes: 0 success, 1 numerical failure (outcome in the summary),
 // 2 bad scene, input file or arguments, or an output folder in use,
 // 3 output could not be written, 130 / 143 interrupted by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "experiments/driver/calibrate.h"
+#include "experiments/driver/fidelity.h"
 #include "experiments/driver/interrupt.h"
 #include "experiments/driver/model_factory.h"
 #include "experiments/driver/run.h"
@@ -173,6 +175,29 @@ int main(int argc, char** argv) {
   calibrate->add_option("--out", cal_out, "Output folder (default results/calibration/<scene name>)");
   calibrate->add_flag("--quiet", cal_quiet, "No progress on stderr");
 
+  wl::FidelityConfig fid;
+  std::string fid_scene, fid_variants, fid_params, fid_out;
+  double fid_tolerance = 0, fid_duration = 0;
+  bool fid_quiet = false;
+  auto* fidelity = app.add_subcommand(
+      "fidelity", "Run the scene at a ladder of model fidelities (yarn without one term, frozen sliding, continuum "
+                  "at strides 1, 2, 4) and measure each against the full yarn model; writes fidelity.csv and .json");
+  fidelity->add_option("scene", fid_scene, "Scene file (TOML)")->required();
+  fidelity->add_option("--tolerance", fid_tolerance,
+                       "Worst-frame RMS distance a variant may have to count as good enough [m] (default 1 % of the "
+                       "cloth size)");
+  fidelity->add_option("--variants", fid_variants,
+                       "Comma-separated variants (default: all the scene allows): " +
+                           joined(wl::fidelity_variant_names()));
+  fidelity->add_option("--reference", fid.reference, "Yarn-level variant the others are measured against")
+      ->capture_default_str();
+  fidelity->add_option("--fem-params", fid_params,
+                       "Calibrated FEM parameter file (from `calibrate`); without it (or a scene parameter_file) the "
+                       "calibrated continuum variants are left out");
+  fidelity->add_option("--duration", fid_duration, "Simulated time [s] (overrides the scene)");
+  fidelity->add_option("--out", fid_out, "Output folder (default results/fidelity/<scene name>)");
+  fidelity->add_flag("--quiet", fid_quiet, "No progress on stderr");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -250,6 +275,35 @@ int main(int argc, char** argv) {
         throw;
       } catch (const std::runtime_error& e) {
         std::cerr << "weavelab: calibrate: " << e.what() << "\n";
+        return 1;
+      }
+    }
+    if (*fidelity) {
+      fid.scene_path = fid_scene;
+      fid.scene = wl::load_scene(fid_scene);
+      if (fidelity->count("--duration")) wl::apply_duration_override(fid.scene, fid_duration, fid.overrides);
+      wl::check_run_settings(fid.scene, fid.overrides);
+      if (fidelity->count("--tolerance")) fid.tolerance_m = wl::positive_option("--tolerance", fid_tolerance);
+      fid.variants = split_list(fid_variants);
+      if (fidelity->count("--variants") && fid.variants.empty()) throw std::invalid_argument("--variants: empty list");
+      if (!fid_params.empty()) fid.fem_params = fid_params;
+      fid.out_dir = wl::output_folder(fidelity->count("--out") ? std::optional(fid_out) : std::nullopt,
+                                      std::filesystem::path("results/fidelity") / std::filesystem::path(fid_scene).stem());
+      fid.progress = !fid_quiet;
+      const wl::FidelityPlan plan = wl::plan_fidelity(fid);  // every input checked; nothing written yet
+      try {
+        const wl::FidelityResult r = wl::run_fidelity(fid, plan);
+        const wl::FidelityChoice& c = r.within_tolerance;
+        std::fprintf(stderr, "weavelab: fidelity: cheapest within %.3g mm (%.3g %% of the %.3g mm cloth): %s, %.3g x "
+                             "faster than %s (CPU %.3g s against %.3g s); results in %s\n",
+                     1e3 * c.tolerance_m, 100 * c.tolerance_m / plan.cloth_size_m, 1e3 * plan.cloth_size_m,
+                     c.variant.c_str(), c.speedup, plan.reference.name.c_str(), c.cpu_s, r.rows.front().cpu_s,
+                     fid.out_dir.string().c_str());
+        return 0;
+      } catch (const std::filesystem::filesystem_error&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        std::cerr << "weavelab: fidelity: " << e.what() << "\n";
         return 1;
       }
     }
