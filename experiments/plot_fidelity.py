@@ -13,6 +13,7 @@ Usage: plot_fidelity.py DIR [--out PREFIX]
 import argparse
 import csv
 import json
+import math
 import os
 import sys
 
@@ -59,11 +60,14 @@ def main():
     choice = meta.get("cheapest_within_tolerance", {})
     tol = choice.get("tolerance_m")
     fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    placed = []  # labelled points (log10 x, log10 y): a label next to one goes below its point
     for r, e in zip(ok, errors):
         x, y = float(r["cpu_s"]), shown(e)
         ax.scatter(x, y, color=COLOURS.get(r["model"], "grey"), zorder=3, s=36)
+        near = any(abs(math.log10(x) - px) < 0.1 and abs(math.log10(y) - py) < 0.3 for px, py in placed)
+        placed.append((math.log10(x), math.log10(y)))
         ax.annotate(r["variant"] + (" (reference)" if r["variant"] == meta.get("reference") else ""), (x, y),
-                    textcoords="offset points", xytext=(5, 4), fontsize=8)
+                    textcoords="offset points", xytext=(5, -11 if near else 4), fontsize=8)
         if r["variant"] == choice.get("variant"):
             ax.scatter(x, y, s=220, facecolors="none", edgecolors="black", linewidths=1.2, zorder=4)
     front = sorted((float(r["cpu_s"]), shown(e)) for r, e in zip(ok, errors) if r["on_front"] == "1")
@@ -82,7 +86,7 @@ def main():
     scene = os.path.basename(meta.get("scene", {}).get("file", ""))
     ax.set_title(f"Fidelity ladder: {scene}, {meta.get('scene', {}).get('duration_s', '?')} s simulated", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper right")
+    ax.legend(fontsize=8, loc="lower left")
     notes = [f"reference at 0 drawn at {floor:.1e} m"]
     notes += [f"{r['variant']}: {r['outcome']}" for r in failed]
     fig.text(0.01, 0.01, "; ".join(notes), fontsize=7)

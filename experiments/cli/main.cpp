@@ -194,6 +194,8 @@ int main(int argc, char** argv) {
   fidelity->add_option("--fem-params", fid_params,
                        "Calibrated FEM parameter file (from `calibrate`); without it (or a scene parameter_file) the "
                        "calibrated continuum variants are left out");
+  fidelity->add_option("--repeats", fid.repeats, "Runs per variant; CPU and wall time are their medians")
+      ->capture_default_str();
   fidelity->add_option("--duration", fid_duration, "Simulated time [s] (overrides the scene)");
   fidelity->add_option("--out", fid_out, "Output folder (default results/fidelity/<scene name>)");
   fidelity->add_flag("--quiet", fid_quiet, "No progress on stderr");

@@ -93,6 +93,26 @@ IntegratorOptions scene_integrator_options(const Scene& s) {
   return o;
 }
 
+// Runs a scene `repeats` times: the first run's record (measured through
+// `record`), with CPU and wall time the medians over all runs.
+RecordedRun timed_runs(const Scene& s, const std::string& model, const RecordOptions& record, int repeats) {
+  RecordedRun first = run_recorded(s, model, s.integrator, scene_integrator_options(s), record);
+  std::vector<double> cpu{first.cpu_s}, wall{first.wall_s};
+  for (int i = 1; i < repeats && first.result.outcome == Outcome::ok; ++i) {
+    const RecordedRun again = run_recorded(s, model, s.integrator, scene_integrator_options(s));
+    cpu.push_back(again.cpu_s);
+    wall.push_back(again.wall_s);
+  }
+  auto median = [](std::vector<double> x) {
+    std::sort(x.begin(), x.end());
+    const size_t n = x.size();
+    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+  };
+  first.cpu_s = median(cpu);
+  first.wall_s = median(wall);
+  return first;
+}
+
 FidelityRow row_of(const PlannedVariant& p, const RecordedRun& run) {
   FidelityRow r;
   r.variant = p.name;
@@ -160,6 +180,8 @@ FidelityPlan plan_fidelity(const FidelityConfig& c) {
   if (!(p.tolerance_m > 0) || !std::isfinite(p.tolerance_m))
     throw std::invalid_argument("--tolerance: got " + std::to_string(p.tolerance_m) + ", expected a distance > 0 [m]");
 
+  if (c.repeats < 1) throw std::invalid_argument("--repeats: got " + std::to_string(c.repeats) + ", expected ≥ 1");
+
   std::optional<FemMaterial> calibrated;
   if (c.fem_params) {
     Scene with_file = s;
@@ -171,14 +193,21 @@ FidelityPlan plan_fidelity(const FidelityConfig& c) {
     p.calibration = "the scene's [fem] parameter_file " + s.fem.parameter_file;
   }
 
-  p.reference = {c.reference, variant_scene(s, c.reference, calibrated)};  // unknown: invalid_argument
+  auto scene_of = [&](const std::string& option, const std::string& name) {
+    try {
+      return variant_scene(s, name, calibrated);
+    } catch (const std::invalid_argument& e) {  // an unknown name
+      throw std::invalid_argument(option + ": " + e.what());
+    }
+  };
+  p.reference = {c.reference, scene_of("--reference", c.reference)};
   if (p.reference.variant.model != "yarn")
     throw std::invalid_argument("--reference: got '" + c.reference +
                                 "', expected a yarn-level variant (the distances are measured at its crossings)");
 
   const bool named = !c.variants.empty();
   for (const std::string& name : named ? c.variants : fidelity_variant_names()) {
-    VariantScene v = variant_scene(s, name, calibrated);  // unknown: invalid_argument
+    VariantScene v = scene_of("--variants", name);
     if (name == c.reference) continue;
     if (std::any_of(p.variants.begin(), p.variants.end(), [&](const PlannedVariant& q) { return q.name == name; }))
       throw std::invalid_argument("--variants: '" + name + "' is listed twice");
@@ -201,8 +230,8 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   FidelityResult out;
-  for (const auto& [name, why] : p.left_out)
-    if (c.progress) std::fprintf(stderr, "fidelity: %s left out: %s\n", name.c_str(), why.c_str());
+  for (const auto& [name, why] : p.left_out)  // also with --quiet: what the ladder lacks
+    std::fprintf(stderr, "fidelity: %s left out: %s\n", name.c_str(), why.c_str());
 
   // 1. The reference: its crossings, material coordinates and energy at every frame.
   ReferenceFrames ref;
@@ -219,7 +248,7 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   };
   if (c.progress) std::fprintf(stderr, "fidelity: reference %s\n", p.reference.name.c_str());
   const Scene& rs = p.reference.variant.scene;
-  const RecordedRun rr = run_recorded(rs, "yarn", rs.integrator, scene_integrator_options(rs), rec);
+  const RecordedRun rr = timed_runs(rs, "yarn", rec, c.repeats);
   if (rr.result.outcome != Outcome::ok)
     throw std::runtime_error("the reference '" + p.reference.name + "' ended '" + to_string(rr.result.outcome) +
                              "' at t = " + std::to_string(rr.end_time) + " s: " + rr.result.message);
@@ -250,7 +279,7 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
       ++k;
     };
     if (c.progress) std::fprintf(stderr, "fidelity: %s (%s)\n", pv.name.c_str(), pv.variant.model.c_str());
-    const RecordedRun run = run_recorded(vs, pv.variant.model, vs.integrator, scene_integrator_options(vs), vr);
+    const RecordedRun run = timed_runs(vs, pv.variant.model, vr, c.repeats);
     FidelityRow row = row_of(pv, run);
     tally.fill(row, ref);
     row.energy_diff_J = max_energy_difference(run, ref);
@@ -313,6 +342,8 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   j.set("reference", p.reference.name);
   j.set("calibration", p.calibration.empty() ? "none: the calibrated continuum variants are left out" : p.calibration);
   j.set("cloth_size_m", p.cloth_size_m);
+  j.set("repeats", c.repeats);
+  j.set("timing", "cpu_s and wall_s: medians over the repeats of each run (process CPU time, all threads)");
   j.set("error_measure", "worst_frame_rms_m: the largest per-frame RMS distance to the reference crossings");
   j.set("cheapest_within_tolerance", choice_json(out.within_tolerance, p.cloth_size_m));
   j.set("cheapest_within_1_percent", choice_json(out.within_1_percent, p.cloth_size_m));

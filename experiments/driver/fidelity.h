@@ -27,6 +27,7 @@ struct FidelityConfig {
   std::vector<std::string> variants;            // empty: the whole ladder
   std::optional<std::filesystem::path> fem_params;  // calibrated continuum parameters
   std::optional<double> tolerance_m;            // absent: 1 % of the cloth size
+  int repeats = 1;                              // runs per variant; CPU and wall time are their medians
   std::filesystem::path out_dir;
   bool progress = true;
 };
@@ -47,7 +48,8 @@ struct FidelityPlan {
 
 // Checks every input before anything runs or is written: throws
 // std::invalid_argument (unknown variant, a continuum reference, a named
-// variant the scene cannot have, a tolerance not > 0) or FemParameterError.
+// variant the scene cannot have, a tolerance not > 0, repeats < 1) or
+// FemParameterError.
 // Variants of the default ladder the scene cannot have, or that equal the
 // full model in this scene, are left out with the reason.
 FidelityPlan plan_fidelity(const FidelityConfig& config);
@@ -57,7 +59,7 @@ struct FidelityRow {
   std::string same_as_full;  // why the variant is the full model under another name ("" otherwise)
   int dofs = 0;
   long steps = 0;
-  double cpu_s = 0, wall_s = 0;
+  double cpu_s = 0, wall_s = 0;  // medians over FidelityConfig::repeats runs
   // Distance between the reference crossings and the variant at the same
   // crossing (yarn) or material point (continuum), over the frames reached:
   //   rms = sqrt(mean over frames and compared points of d²), worst_frame_rms =

@@ -60,7 +60,7 @@ VariantScene variant_scene(const Scene& scene, const std::string& name, const st
   if (!first_guess && name != "fem_s1" && stride == 1) {
     std::string known;
     for (const std::string& n : fidelity_variant_names()) known += (known.empty() ? "" : ", ") + n;
-    throw std::invalid_argument("--variants: unknown variant '" + name + "', expected one of " + known);
+    throw std::invalid_argument("unknown variant '" + name + "', expected one of " + known);
   }
   v.model = "fem";
   s.fem.mesh_file.clear();

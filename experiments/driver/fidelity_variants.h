@@ -34,7 +34,7 @@ struct VariantScene {
 // The scene of variant `name`; `calibrated` holds the calibrated continuum
 // parameters (nullopt: none given). The continuum variants use the crossing
 // grid (fem.mesh_file is dropped). Throws std::invalid_argument for an
-// unknown name, listing the known ones.
+// unknown name ("unknown variant 'x', expected one of …").
 VariantScene variant_scene(const Scene& scene, const std::string& name, const std::optional<FemMaterial>& calibrated);
 
 }  // namespace wl

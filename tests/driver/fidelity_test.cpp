@@ -147,17 +147,22 @@ TEST_F(Fidelity, PlanRefusesBadInput) {
       EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
     }
   };
-  refused(config(scene, {"no_friction", "coarse"}), "unknown variant 'coarse'");
+  refused(config(scene, {"no_friction", "coarse"}), "--variants: unknown variant 'coarse'");
   refused(config(scene, {"no_friction", "no_friction"}), "listed twice");
   refused(config(scene, {"fem_s1"}), "no calibrated parameters");
   FidelityConfig c = config(scene, {});
   c.reference = "fem_first_guess";
   refused(c, "expected a yarn-level variant");
+  c.reference = "finest";
+  refused(c, "--reference: unknown variant 'finest'");
   c = config(scene, {});
   c.tolerance_m = 0.0;
   refused(c, "--tolerance");
   c.tolerance_m = -1e-3;
   refused(c, "--tolerance");
+  c = config(scene, {});
+  c.repeats = 0;
+  refused(c, "--repeats");
   EXPECT_FALSE(fs::exists(dir_));
 }
 
