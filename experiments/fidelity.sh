@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The fidelity ladder on the hanging cloth: 17×17 over the published 0.5 s
 # (CPU times the medians of 3 runs) and 65×65 over 0.2 s (one run each: the
-# full yarn model costs about 0.45 s per step there). The continuum is
-# calibrated first on a 17×17 patch of each scene's fabric (one start; reused
-# when results/calibration/<scene>_fidelity/params.toml exists).
+# full yarn model costs about 0.8 s per step there on one thread). The
+# continuum is calibrated first on a 17×17 patch of each scene's fabric (one
+# start; reused when results/calibration/<scene>_fidelity/params.toml exists).
 # Results and Pareto charts in results/fidelity/<scene>/.
 # CPU times are of one thread (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1): a
 # busy machine inflates multi-threaded CPU time through spinning threads.
