@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdlib.h>
 #include <sys/wait.h>
 
 namespace {
@@ -99,6 +100,38 @@ TEST_F(Cli, ShortRunWritesFramesMetricsAndSummary) {
   EXPECT_TRUE(fs::exists(out / "metrics.csv"));
   EXPECT_TRUE(fs::exists(out / "summary.json"));
   EXPECT_TRUE(fs::exists(out / "frames"));
+}
+
+std::string file_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// README: reproducibility. Runs under different OpenMP thread counts, and with
+// OpenBLAS left to its default or set to one thread, write the same bits; the
+// summary records the thread counts in force.
+TEST_F(Cli, RunsAreBitwiseIdenticalAcrossThreadCounts) {
+  const std::vector<std::pair<const char*, const char*>> settings = {{nullptr, nullptr}, {"1", "1"}, {"2", nullptr}};
+  for (size_t k = 0; k < settings.size(); ++k) {
+    auto set = [](const char* name, const char* value) { value ? ::setenv(name, value, 1) : ::unsetenv(name); };
+    set("OMP_NUM_THREADS", settings[k].first);
+    set("OPENBLAS_NUM_THREADS", settings[k].second);
+    const Result r = run_cli(std::string("run '") + WEAVELAB_SOURCE_DIR +
+                                 "/experiments/scenes/hanging_wind.toml' --duration 0.02 --quiet --out '" +
+                                 (dir_ / ("run" + std::to_string(k))).string() + "'",
+                             dir_);
+    ::unsetenv("OMP_NUM_THREADS");
+    ::unsetenv("OPENBLAS_NUM_THREADS");
+    ASSERT_EQ(r.code, 0) << r.output;
+  }
+  const std::string summary = file_text(dir_ / "run0" / "summary.json");
+  EXPECT_NE(summary.find("\"openblas\": 1"), std::string::npos) << summary;
+  for (size_t k = 1; k < settings.size(); ++k)
+    for (const char* frame : {"frames/run_00001.vtu", "frames/run_00002.vtu"})
+      EXPECT_EQ(file_text(dir_ / ("run" + std::to_string(k)) / frame), file_text(dir_ / "run0" / frame))
+          << frame << " of setting " << k;
 }
 
 // Bad inputs of every kind: each is exit 2 with a located message (the scene,
