@@ -134,6 +134,24 @@ TEST_F(Cli, RunsAreBitwiseIdenticalAcrossThreadCounts) {
           << frame << " of setting " << k;
 }
 
+// A state the model cannot represent is a named numerical outcome (exit 1) with
+// a complete record, not NaN or a runaway: without friction or parallel contact,
+// a strong pull along the yarns slides crossing (1, 1) past (2, 1) in one step.
+TEST_F(Cli, SlidingCoordinatesThatCrossEndInOutcomeInvalidState) {
+  const fs::path scene = write_scene(
+      "[cloth]\nwarps = 5\nwefts = 5\n[pose]\nkind = \"upright\"\n[[handles]]\nnode = [0, 0]\n"
+      "stiffness_N_per_m = 10000.0\n[[handles]]\nnode = [4, 0]\nstiffness_N_per_m = 10000.0\n"
+      "[gravity]\nacceleration_m_per_s2 = [0.0, 0.0, -10000.0]\n[time]\nduration_s = 0.02\n"
+      "[terms]\nfriction = false\nparallel_contact = false\n");
+  const fs::path out = dir_ / "out";
+  const Result r = run_cli("run '" + scene.string() + "' --quiet --out '" + out.string() + "'", dir_);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("'invalid_state'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("on warp 1 between crossings (1, 1) and (2, 1)"), std::string::npos) << r.output;
+  EXPECT_NE(file_text(out / "summary.json").find("\"invalid_state\""), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "metrics.csv"));
+}
+
 // Bad inputs of every kind: each is exit 2 with a located message (the scene,
 // mesh or parameter file with its line, or the option) and writes nothing.
 TEST_F(Cli, EveryBadInputIsALocatedExit2) {
