@@ -139,17 +139,20 @@ FdReport check_element(const Term& term, int e, const std::vector<LocalState>& g
     rep.ok = false;
     why << term.name() << " element " << e << ": " << what << " is zero at every state (a check of nothing)\n";
   };
-  require_nonzero("the force", largest_f);
-  if (opt.constant_force) {
+  if (term.provides_mass()) {
+    // Its force is the inertial force, checked against M above (zero for a constant M).
+    require_nonzero("the mass", largest_m);
+  } else if (opt.constant_force) {
+    require_nonzero("the force", largest_f);
     if (largest_k > opt.floor) {
       rep.ok = false;
       why << term.name() << " element " << e << ": df/dq is not zero for a constant force\n";
     }
   } else {
+    require_nonzero("the force", largest_f);
     require_nonzero("df/dq", largest_k);
   }
   if (term.has_velocity_jacobian()) require_nonzero("df/dv", largest_d);
-  if (term.provides_mass()) require_nonzero("the mass", largest_m);
   rep.detail = why.str();
   return rep;
 }

@@ -7,8 +7,9 @@
 //   mass   (terms that provide one): symmetric, and the velocity-dependent force
 //          f(q, v) − f(q, 0) equal to the inertial force ∂T/∂q − Ṁq̇ built from
 //          differences of M (docs/models.md §3.1.2),
-// with steps relative to the state's extent. A check of nothing fails: the force,
-// ∂f/∂q, ∂f/∂v and the mass must each be non-zero at some state.
+// with steps relative to the state's extent. A check of nothing fails: the force
+// and ∂f/∂q (or, for a term with a mass, the mass), and ∂f/∂v when the term has
+// one, must each be non-zero at some state.
 // The term must already be prepared (auxiliary quantities frozen).
 #pragma once
 #include <functional>
