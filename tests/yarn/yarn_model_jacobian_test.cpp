@@ -19,22 +19,14 @@
 #include "integrators/backward_euler.h"
 #include "models/scene/scene.h"
 #include "models/yarn/yarn_model.h"
+#include "tests/yarn/model_blocks.h"
 
 namespace wl {
 namespace {
 
-constexpr std::array<const char*, 3> kKind = {"x", "u", "v"};
-
-// Kind of every DoF: 0 = position, 1 = u (along the warp), 2 = v (along the weft).
-std::vector<int> dof_kinds(const YarnModel& m) {
-  std::vector<int> kind(m.num_dofs(), 0);
-  for (int k = 0; k < m.grid().num_nodes(); ++k) {
-    const NodeDofs& d = m.grid().dofs(k);
-    if (is_dof(d.u)) kind[d.u] = 1;
-    if (is_dof(d.v)) kind[d.v] = 2;
-  }
-  return kind;
-}
+using test::Blocks;
+using test::dof_kinds;
+using test::kDofKind;
 
 // The model's force with every auxiliary quantity (F_n, F_u, anchors) as the
 // last model.evaluate left it: the terms evaluated element by element, without
@@ -62,18 +54,6 @@ Vec frozen_force(const YarnModel& m, const Vec& q, const Vec& v, bool inertia_on
   }
   return f;
 }
-
-// Squared Frobenius norms per (row kind, column kind) block, over sampled columns.
-struct Blocks {
-  std::array<std::array<double, 3>, 3> ref{}, diff{};
-  void add(const std::vector<int>& kind, int col, const Vec& reference, const Vec& other) {
-    for (int r = 0; r < reference.size(); ++r) {
-      ref[kind[r]][kind[col]] += reference[r] * reference[r];
-      diff[kind[r]][kind[col]] += (reference[r] - other[r]) * (reference[r] - other[r]);
-    }
-  }
-  double relative(int r, int c) const { return std::sqrt(diff[r][c] / ref[r][c]); }
-};
 
 class ShippedScene : public ::testing::Test {
  protected:
@@ -171,7 +151,7 @@ TEST_F(ShippedScene, JacobiansMatchDifferencesOfTheFrozenForcePerBlock) {
   double worst_neglected = 0.0;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
-      const std::string block = std::string(kKind[r]) + "-" + kKind[c];
+      const std::string block = std::string(kDofKind[r]) + "-" + kDofKind[c];
       // No term couples a crossing's u with its v (docs/models.md §2.4): those two blocks
       // are zero in both; every other block of ∂f/∂q is non-zero on the shipped scene.
       if (r + c == 3 && r != 0) {
@@ -231,9 +211,9 @@ TEST_F(ShippedScene, MassBlocksMatchTheInertialForce) {
     diff[kind[c]] += (f_inertia[c] - expected) * (f_inertia[c] - expected);
   }
   for (int r = 0; r < 3; ++r) {
-    ASSERT_GT(ref[r], 0.0) << kKind[r];
-    std::cout << "inertial force on " << kKind[r] << " rows: rel. error " << std::sqrt(diff[r] / ref[r]) << "\n";
-    EXPECT_LT(std::sqrt(diff[r] / ref[r]), 1e-6) << "inertial force on " << kKind[r] << " rows";
+    ASSERT_GT(ref[r], 0.0) << kDofKind[r];
+    std::cout << "inertial force on " << kDofKind[r] << " rows: rel. error " << std::sqrt(diff[r] / ref[r]) << "\n";
+    EXPECT_LT(std::sqrt(diff[r] / ref[r]), 1e-6) << "inertial force on " << kDofKind[r] << " rows";
   }
 }
 
