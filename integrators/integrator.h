@@ -11,7 +11,9 @@
 
 namespace wl {
 
-enum class Outcome { ok, diverged, nan, step_too_small, max_steps, not_offered, interrupted };
+// invalid_state: the model cannot represent the state reached (Model::invalid_state;
+// e.g. sliding coordinates that meet, docs/models.md §2.2); the message names where.
+enum class Outcome { ok, diverged, nan, step_too_small, max_steps, not_offered, interrupted, invalid_state };
 const char* to_string(Outcome o);
 
 struct IntegratorStats {
@@ -78,6 +80,9 @@ class Integrator {
   // y = (q, v): stores and checks the state, lets the model update its
   // history and reports the step.
   StepResult accept_step_state(double t_new, const double* y, long nonlinear_iters, double wall_s);
+  // The free check_state below, preceded by the model's own rule for states it
+  // cannot represent (Outcome::invalid_state with the model's message).
+  StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) const;
 
   Model* model_ = nullptr;
   IntegratorOptions opt_;

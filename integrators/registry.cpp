@@ -18,6 +18,7 @@ const char* to_string(Outcome o) {
     case Outcome::max_steps: return "max_steps";
     case Outcome::not_offered: return "not_offered";
     case Outcome::interrupted: return "interrupted";
+    case Outcome::invalid_state: return "invalid_state";
   }
   return "unknown";
 }
@@ -29,6 +30,11 @@ StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt)
     return {Outcome::diverged, "runaway state: max |v| = " + std::to_string(vmax) + " exceeds " +
                                    std::to_string(opt.runaway_speed)};
   return {};
+}
+
+StepResult Integrator::check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) const {
+  if (std::string why = model_->invalid_state(q); !why.empty()) return {Outcome::invalid_state, why};
+  return wl::check_state(q, v, opt);
 }
 
 void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {

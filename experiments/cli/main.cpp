@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "experiments/driver/calibrate.h"
+#include "experiments/driver/determinism.h"
 #include "experiments/driver/fidelity.h"
 #include "experiments/driver/interrupt.h"
 #include "experiments/driver/model_factory.h"
@@ -96,6 +97,7 @@ void load_experiment_scene(const ExperimentArgs& a, CLI::App* cmd, Config& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  wl::hold_blas_threads();  // bitwise reproducible runs (README: reproducibility)
   CLI::App app{"weavelab: yarn-level and continuum cloth under pluggable integrators"};
   app.require_subcommand(1);
 
@@ -310,12 +312,7 @@ int main(int argc, char** argv) {
       }
     }
     wl::Scene scene = wl::load_scene(scene_path);
-    if (!fem_params.empty()) {
-      scene.fem.parameter_file = fem_params;
-      (void)wl::fem_material(scene);  // a bad file is exit 2 before anything is written
-    }
     wl::RunOptions opt;
-    if (!fem_params.empty()) opt.overrides["fem.parameter_file"] = fem_params;
     opt.model = model;
     opt.progress = !quiet;
     wl::RunOverrides ov;
@@ -325,6 +322,7 @@ int main(int argc, char** argv) {
     if (run->count("--output-interval")) ov.output_interval_s = output_interval;
     if (run->count("--rtol")) ov.rtol = rtol;
     ov.adaptive = adaptive;
+    if (run->count("--fem-params")) ov.fem_parameter_file = fem_params;
     wl::apply_run_overrides(scene, ov, opt.overrides);  // every rule before anything is written
     opt.out_dir = wl::output_folder(run->count("--out") ? std::optional(out_dir) : std::nullopt,
                                     std::filesystem::path("results") / std::filesystem::path(scene_path).stem() / model);

@@ -55,6 +55,11 @@ class Model {
   // History update after an accepted step of size h ending at (t, q, v).
   virtual void accept_step(double t, const Vec& q, const Vec& v, double h) = 0;
 
+  // Why the model cannot represent state q (e.g. sliding coordinates that meet),
+  // naming the node or yarn; empty when it can. Integrators check every accepted
+  // state (Outcome::invalid_state). Only finite values are judged: NaN is check_state's.
+  virtual std::string invalid_state(const Vec& q) const { return {}; }
+
   // Largest node speed ‖ẋ‖ [m/s]; the default reads v as consecutive 3-vectors.
   virtual double max_node_speed(const Vec& v) const {
     double m = 0.0;

@@ -228,6 +228,23 @@ double YarnModel::max_node_speed(const Vec& v) const {
   return m;
 }
 
+std::string YarnModel::invalid_state(const Vec& q) const {
+  if (!scene_.sliding) return {};
+  const int nu = grid_.nu();
+  for (const Segment& s : segments_) {
+    const NodeDofs &a = grid_.dofs(s.a), &b = grid_.dofs(s.b);
+    const double ca = coordinate(q, s.warp ? a.u : a.v), cb = coordinate(q, s.warp ? b.u : b.v);
+    if (!(std::isfinite(ca) && std::isfinite(cb)) || cb - ca > 0.0) continue;
+    std::ostringstream why;
+    why.precision(17);
+    why << "sliding coordinates meet or cross on " << (s.warp ? "warp " : "weft ") << (s.warp ? s.a / nu : s.a % nu)
+        << " between crossings (" << s.a % nu << ", " << s.a / nu << ") and (" << s.b % nu << ", " << s.b / nu << "): "
+        << (s.warp ? "u" : "v") << " = " << ca << " and " << cb << " (a segment needs increasing coordinates)";
+    return why.str();
+  }
+  return {};
+}
+
 double YarnModel::coordinate(const Vec& q, int index) const {
   return is_dof(index) ? q[index] : constants_[constant_slot(index)];
 }
