@@ -72,6 +72,11 @@ class Model {
     dfdp = Vec::Zero(num_dofs());
     return false;
   }
+  // Adds (∂M/∂p)·w for the parameter `key` at q into `out` (sized num_dofs());
+  // false when the mass does not depend on it.
+  virtual bool mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, Vec& out) const {
+    return false;
+  }
   // Short facts for `weavelab info` and the run summary (name -> value).
   virtual std::map<std::string, std::string> describe() const = 0;
 };

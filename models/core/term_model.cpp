@@ -73,4 +73,8 @@ bool TermModel::force_parameter_derivative(const std::string& key, double, const
   return assembly_->add_parameter_derivative(key, q, v, constants_, dfdp);
 }
 
+bool TermModel::mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, Vec& out) const {
+  return assembly_->add_mass_parameter_product(key, q, w, constants_, out);
+}
+
 }  // namespace wl

@@ -63,6 +63,7 @@ void FemModel::build() {
     for (int e = 0; e < nt; ++e) {
       const double m = material_.areal_density_kg_per_m2 * rest[e].area;
       t->add(triangle_stencil(mesh_.triangles[e]), m);
+      t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
       for (int v : mesh_.triangles[e]) vertex_mass_[v] += m / 3.0;
     }
     terms_.push_back(std::move(t));
@@ -108,7 +109,10 @@ void FemModel::build() {
   const Vec3 g(scene_.gravity_m_per_s2[0], scene_.gravity_m_per_s2[1], scene_.gravity_m_per_s2[2]);
   if (on.gravity && g.norm() > 0) {
     auto t = std::make_unique<NodalGravityTerm>(g);
-    for (int i = 0; i < nv; ++i) t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
+    for (int i = 0; i < nv; ++i) {
+      t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
+      t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
+    }
     terms_.push_back(std::move(t));
   }
   // Wind: the yarn model's term and parameters, on every triangle (docs/models.md §3.9, §6.6).
