@@ -1,5 +1,5 @@
 // The differentiable material parameters of a scene, read and written by their
-// scene keys (docs/models.md §8.1):
+// scene keys (docs/models.md §9.1):
 //   yarn_types.<type>.density_kg_per_m | stretch_modulus_Pa | bending_modulus_Pa
 //   contact.shear_modulus_Pa, contact.friction_coefficient
 //   fem.<[fem] key>  (the continuum's material, models/fem/fem_material.h)

@@ -32,7 +32,7 @@ class BackwardEuler : public Integrator {
   StepResult step_linear(double h, int* iters);
   StepResult step_newton(double h, int* iters);
   void form_step_matrix(double h);  // a_ = M − h D − h² K from ev_
-  // Sensitivity updates (backward_euler_sensitivity.cpp, docs/models.md §8.2), called
+  // Sensitivity updates (backward_euler_sensitivity.cpp, docs/models.md §9.2), called
   // after the step's solve and before the state moves on.
   void propagate_linear_sensitivities(double h, const Vec& dv);
   void propagate_newton_sensitivities(double h, const Vec& q0, const Vec& v0, const SparseMatrix& m0);

@@ -67,7 +67,7 @@ class Integrator {
   const IntegratorStats& stats() const { return stats_; }
   std::function<void(const StepRecord&)> on_step;  // called after each accepted step
 
-  // Forward parameter sensitivities (docs/models.md §8.2): a method that offers
+  // Forward parameter sensitivities (docs/models.md §9.2): a method that offers
   // them carries S_q = ∂q/∂p and S_v = ∂v/∂p (num_dofs × keys, zero at t0)
   // for the model's parameter keys named here. Call before initialize(), which
   // throws std::invalid_argument for a key the model does not differentiate.

@@ -48,6 +48,8 @@ class Assembly {
   // mass-providing term depends on it.
   bool add_mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, const Vec& constants,
                                   Vec& out) const;
+  // Adds ((∂M/∂q)·dq)·w into `out` (constants do not move: dq is zero there).
+  void add_mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, const Vec& constants, Vec& out) const;
 
  private:
   struct TermPlan {

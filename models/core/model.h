@@ -77,6 +77,9 @@ class Model {
   virtual bool mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, Vec& out) const {
     return false;
   }
+  // Adds ((∂M/∂q)·dq)·w at q into `out`; only models whose mass depends on q
+  // (mass_depends_on_q()) add anything.
+  virtual void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const {}
   // Short facts for `weavelab info` and the run summary (name -> value).
   virtual std::map<std::string, std::string> describe() const = 0;
 };

@@ -68,8 +68,12 @@ class Term {
   virtual void parameter_derivative(int /*e*/, int /*k*/, const double* /*q*/, const double* /*v*/,
                                     double* /*dfdp*/) const {}
   // ∂M/∂p of one element (n×n, column-major, added into dmdp) for terms that
-  // provide mass; forward sensitivities need it for density (docs/models.md §8.2).
+  // provide mass; forward sensitivities need it for density (docs/models.md §9.2).
   virtual void mass_parameter_derivative(int /*e*/, int /*k*/, const double* /*q*/, double* /*dmdp*/) const {}
+  // Directional derivative of the element's mass block, (∂M/∂q)·dq (n×n, added
+  // into dm), for terms whose mass depends on q (docs/models.md §9.2).
+  virtual void mass_directional_derivative(int /*e*/, const double* /*q*/, const double* /*dq*/,
+                                           double* /*dm*/) const {}
 };
 
 // Helper base for terms whose elements all have N local DoFs: stores stencils
@@ -94,7 +98,7 @@ class StencilTerm : public Term {
 // A term whose every element is proportional to one scene parameter p:
 // f_e = p·g_e(q, v) and M_e = p·m_e(q) (stretch ∝ Y, bending ∝ B, shear ∝ S,
 // inertia and gravity ∝ ρ), so ∂f_e/∂p = f_e/p and ∂M_e/∂p = M_e/p
-// (docs/models.md §8.1). The model names each element's parameter with tag_last().
+// (docs/models.md §9.1). The model names each element's parameter with tag_last().
 template <int N>
 class ProportionalParameterTerm : public StencilTerm<N> {
  public:

@@ -1,5 +1,5 @@
 // Scene keys of the material parameters the models differentiate
-// (Term::parameter_keys(), docs/models.md §8.1). The continuum's keys are
+// (Term::parameter_keys(), docs/models.md §9.1). The continuum's keys are
 // "fem." + its [fem] key (models/fem/fem_material.h).
 #pragma once
 #include <string>

@@ -79,7 +79,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   auto rho_of = [&](const Segment& s) {
     return s.warp ? warp_rho[s.a / nu] : weft_rho[s.a % nu];
   };
-  // Each element is tagged with the scene parameter it is proportional to (docs/models.md §8.1).
+  // Each element is tagged with the scene parameter it is proportional to (docs/models.md §9.1).
   auto type_of = [&](const Segment& s) -> const YarnType& { return scene.yarn_types.at(s.type); };
 
   const TermSwitches& on = scene.terms;

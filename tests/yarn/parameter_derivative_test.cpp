@@ -1,4 +1,4 @@
-// Parameter derivatives of the yarn terms (docs/models.md §8.1): ∂f/∂p and, for
+// Parameter derivatives of the yarn terms (docs/models.md §9.1): ∂f/∂p and, for
 // inertia, ∂M/∂p against central differences in p, with the generic checker,
 // once per term; and the model's keys and their assembly.
 #include <gtest/gtest.h>
