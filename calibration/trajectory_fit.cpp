@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <ctime>
 #include <limits>
 #include <memory>
@@ -38,30 +39,36 @@ struct Observation {
   int min_seen = 0;                     // fewest points seen in a frame
 };
 
+// Every point seen in every frame, point k at the DoFs dof_of(k) … +2.
+Observation direct(int n, const Model& model, size_t frames, const std::function<int(int)>& dof_of) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) t.emplace_back(3 * k + c, dof_of(k) + c, 1.0);
+  SpMat h(3 * n, model.num_dofs());
+  h.setFromTriplets(t.begin(), t.end());
+  return {std::vector<SpMat>(frames, h), std::vector<std::vector<char>>(frames, std::vector<char>(n, 1)), n};
+}
+
 Observation observe(const Model& model, const std::string& name, const std::vector<TargetFrame>& frames) {
   const int n = static_cast<int>(frames.front().points.rows());
-  Observation o;
+  auto mismatch = [&](const std::string& what, int count) {
+    return TrajectoryFitError("the target has " + std::to_string(n) + " points per frame, the scene's " + name +
+                              " model " + std::to_string(count) + " " + what + ": not a run of this scene");
+  };
   if (name == "yarn") {
     const auto& yarn = dynamic_cast<const YarnModel&>(model);
-    if (yarn.grid().num_nodes() != n)
-      throw TrajectoryFitError("the target has " + std::to_string(n) + " points per frame, the scene's yarn model " +
-                               std::to_string(yarn.grid().num_nodes()) + " nodes: not a run of this scene");
-    std::vector<Eigen::Triplet<double>> t;
-    for (int k = 0; k < n; ++k)
-      for (int c = 0; c < 3; ++c) t.emplace_back(3 * k + c, yarn.grid().dofs(k).x + c, 1.0);
-    SpMat h(3 * n, model.num_dofs());
-    h.setFromTriplets(t.begin(), t.end());
-    o.H.assign(frames.size(), h);
-    o.seen.assign(frames.size(), std::vector<char>(n, 1));
-    o.min_seen = n;
-    return o;
+    if (yarn.grid().num_nodes() != n) throw mismatch("nodes", yarn.grid().num_nodes());
+    return direct(n, model, frames.size(), [&](int k) { return yarn.grid().dofs(k).x; });
   }
   const auto& fem = dynamic_cast<const FemModel&>(model);
+  if (frames.front().uv.empty()) {  // no material coordinates: a continuum run, observed at its vertices
+    if (fem.mesh().num_vertices() != n) throw mismatch("vertices", fem.mesh().num_vertices());
+    return direct(n, model, frames.size(), [](int k) { return 3 * k; });
+  }
+  // A yarn-level run: the continuum interpolated at each crossing's material point.
+  Observation o;
   o.min_seen = n;
   for (const TargetFrame& f : frames) {
-    if (static_cast<int>(f.uv.size()) != n)
-      throw TrajectoryFitError("the continuum is observed at the crossings' material points: the target's frames "
-                               "need the point arrays 'u' and 'v' (a yarn-level run)");
     std::vector<Eigen::Triplet<double>> t;
     std::vector<char> seen(n, 0);
     for (int k = 0; k < n; ++k) {
