@@ -252,7 +252,10 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     const double span = 1e-6 * (upper[k] - lower[k]);
     p.at_bound = best.theta[k] - lower[k] < span || upper[k] - best.theta[k] < span;
     p.weakly_determined = J.col(k).norm() < 1e-3 * max_col;
-    p.std_error = C.size() ? p.value * std::sqrt(std::max(0.0, C(k, k))) : std::numeric_limits<double>::quiet_NaN();
+    const bool held = std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) != stats.unidentifiable.end();
+    p.weakly_determined = p.weakly_determined || held;
+    p.std_error = C.size() && !held ? p.value * std::sqrt(std::max(0.0, C(k, k)))
+                                    : std::numeric_limits<double>::quiet_NaN();
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
     for (const StartOutcome& s : result.starts)
       if (s.usable && s.cost <= best_cost * (1 + 1e-3) + 1e-20) {

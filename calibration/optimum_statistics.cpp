@@ -1,5 +1,6 @@
 #include "calibration/optimum_statistics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -16,25 +17,42 @@ OptimumStatistics optimum_statistics(ceres::Problem& problem, double* theta, int
   s.jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
   for (int r = 0; r < crs.num_rows; ++r)
     for (int i = crs.rows[r]; i < crs.rows[r + 1]; ++i) s.jacobian(r, crs.cols[i]) = crs.values[i];
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.jacobian);
-  for (int i = 0; i < svd.singularValues().size(); ++i) s.singular_values.push_back(svd.singularValues()[i]);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.jacobian, Eigen::ComputeThinV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  for (int i = 0; i < sv.size(); ++i) {
+    s.singular_values.push_back(sv[i]);
+    if (sv[i] > 1e-7 * sv[0]) continue;
+    int held = 0;
+    svd.matrixV().col(i).cwiseAbs().maxCoeff(&held);
+    if (std::find(s.unidentifiable.begin(), s.unidentifiable.end(), held) == s.unidentifiable.end())
+      s.unidentifiable.push_back(held);
+  }
 
   const int m = crs.num_rows;
   if (m <= n) {
     s.covariance_message = "fewer residuals than parameters";
     return s;
   }
+  if (static_cast<int>(s.unidentifiable.size()) == n) {
+    s.covariance_message = "no parameter is identifiable: the residuals do not depend on them";
+    return s;
+  }
+  // Hold the unidentifiable parameters: Ceres then computes the covariance in
+  // the remaining directions (zero rows and columns for the held ones).
+  if (!s.unidentifiable.empty()) problem.SetManifold(theta, new ceres::SubsetManifold(n, s.unidentifiable));
   ceres::Covariance::Options copt;
   copt.algorithm_type = ceres::DENSE_SVD;
   ceres::Covariance cov(copt);
   const std::vector<std::pair<const double*, const double*>> blocks{{theta, theta}};
-  if (!cov.Compute(blocks, &problem)) {
-    s.covariance_message = "the Jacobian is rank deficient: some parameter is not identifiable (singular values)";
-    return s;
+  const bool ok = cov.Compute(blocks, &problem);
+  if (ok) {
+    s.covariance.resize(n, n);
+    cov.GetCovarianceBlock(theta, theta, s.covariance.data());  // row-major; the matrix is symmetric
+    s.covariance *= 2.0 * s.cost / (m - n + static_cast<int>(s.unidentifiable.size()));
   }
-  s.covariance.resize(n, n);
-  cov.GetCovarianceBlock(theta, theta, s.covariance.data());  // row-major; the matrix is symmetric
-  s.covariance *= 2.0 * s.cost / (m - n);
+  if (!s.unidentifiable.empty()) problem.SetManifold(theta, nullptr);
+  if (!ok) s.covariance_message = "the Jacobian is rank deficient: some parameter is not identifiable (singular values)";
+  else if (!s.unidentifiable.empty()) s.covariance_message = "some parameters are not identifiable (held for the covariance)";
   return s;
 }
 

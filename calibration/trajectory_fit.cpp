@@ -320,9 +320,12 @@ TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetF
     fp.upper = std::exp(upper[k]);
     const double span = 1e-6 * (upper[k] - lower[k]);
     fp.at_bound = theta[k] - lower[k] < span || upper[k] - theta[k] < span;
+    fp.identifiable = std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) ==
+                      stats.unidentifiable.end();
     // Delta method: σ_p = p·σ_θ.
-    fp.std_error = stats.covariance.size() ? fp.value * std::sqrt(std::max(0.0, stats.covariance(k, k)))
-                                           : std::numeric_limits<double>::quiet_NaN();
+    fp.std_error = stats.covariance.size() && fp.identifiable
+                       ? fp.value * std::sqrt(std::max(0.0, stats.covariance(k, k)))
+                       : std::numeric_limits<double>::quiet_NaN();
     result.parameters.push_back(fp);
   }
   if (p != last_p || !last.ok) last = sim.run(p);

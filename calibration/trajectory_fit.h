@@ -42,6 +42,7 @@ struct TrajectoryFitParameter {
   double std_error = 0.0;  // NaN when the covariance is unavailable
   double lower = 0.0, upper = 0.0;
   bool at_bound = false;
+  bool identifiable = true;  // false: the trajectory does not tell it (optimum_statistics.h)
 };
 
 struct TrajectoryFitResult {

@@ -63,6 +63,7 @@ TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) 
     e.set("lower", fp.lower);
     e.set("upper", fp.upper);
     e.set("at_bound", fp.at_bound);
+    e.set("identifiable", fp.identifiable);
     params.push(std::move(e));
   }
   j.set("parameters", std::move(params));
