@@ -53,7 +53,7 @@ def main():
     scene = next(r for r in protocol if r)["scene"]["text"]
     value = lambda run, key: next(p["value"] for p in run["parameters"] if p["key"] == key)
     ident = lambda run, key: next(p.get("identifiable", True) for p in run["parameters"] if p["key"] == key)
-    head = "| parameter | truth | paper (25 fr.) | ours 5 fr. | ours 10 fr. | ours 25 fr. | random starts, 10 fr. |"
+    head = "| parameter | truth | paper (25 fr.) | ours 5 fr. | ours 10 fr. | ours 25 fr. | random starts, 5 fr. |"
     print(head)
     print("|" + "---|" * (head.count("|") - 1))
     for key, paper in PAPER.items():

@@ -194,6 +194,9 @@ int main(int argc, char** argv) {
   fit->add_option("--integrator", fitc.fit.integrator, "be-linear or be-newton (default the scene's)");
   fit->add_option("--bound-factor", fitc.fit.bound_factor, "Bounds start/b ... start*b")->capture_default_str();
   fit->add_option("--max-iterations", fitc.fit.max_iterations, "Ceres iterations")->capture_default_str();
+  fit->add_option("--fem-params", fitc.fem_params,
+                  "FEM parameter file (as written by `calibrate` or `fit --model fem`): the continuum's values "
+                  "where --start does not set them");
   fit->add_option("--out", fit_out, "Output folder (default results/fit/<scene name>)");
   fit->add_flag("--quiet", fit_quiet, "No progress on stderr");
 

@@ -10,6 +10,7 @@
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
 #include "experiments/output/run_reader.h"
+#include "models/fem/fem_material.h"
 
 namespace wl {
 namespace {
@@ -25,6 +26,10 @@ std::string num(double x) {
 FitCommandPlan plan_fit(const FitCommandConfig& c) {
   FitCommandPlan p;
   p.scene = load_scene(c.scene_path.string());
+  if (!c.fem_params.empty()) {
+    p.scene.fem.parameter_file = c.fem_params;
+    (void)fem_material(p.scene);  // a bad file is exit 2 before anything runs
+  }
   if (c.frames < 0) throw TrajectoryFitError("--frames: got " + std::to_string(c.frames) + ", expected a count >= 1");
   for (const RecordedFrame& f : read_run_frames(c.target_dir)) {
     if (!(f.time > 0.0)) continue;
@@ -84,6 +89,17 @@ TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) 
   j.set("created", utc_now());
   add_provenance(j);
   write_file_atomically(c.out_dir / "fit.json", j.dump());
+
+  if (c.fit.model == "fem" && !r.final_rms.empty()) {  // usable as `weavelab run --fem-params`
+    Scene fitted = p.scene;
+    for (const TrajectoryFitParameter& fp : r.parameters) set_scene_parameter(fitted, fp.key, fp.value);
+    write_fem_parameter_file((c.out_dir / "params.toml").string(), fem_material(fitted),
+                             {{"method", "weavelab fit: trajectory of " + c.target_dir.string()},
+                              {"source_scene", c.scene_path.string()},
+                              {"source_scene_hash", reference_hash(p.scene.text)},
+                              {"frames", std::to_string(p.target.size())},
+                              {"created", utc_now()}});
+  }
 
   CsvTable conv(c.out_dir / "convergence.csv", {"iteration", "cost", "rms_m"});
   const double per_point = 2.0 / (r.observed_points * std::max<size_t>(1, r.times.size()));

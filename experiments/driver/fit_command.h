@@ -1,5 +1,6 @@
 // `weavelab fit`: scene parameters fitted to a recorded run's trajectory
 // (calibration/trajectory_fit.h, docs/calibration.md §7). Writes into the output folder
+//   params.toml     (continuum fits) the FEM parameter file, for `run --fem-params`
 //   fit.json        parameters (key, start, value, std_error, bounds), correlations,
 //                   iterations, simulations, wall and CPU time, git revision
 //   convergence.csv Ceres cost and RMS distance per iteration
@@ -21,6 +22,7 @@ namespace wl {
 struct FitCommandConfig {
   std::filesystem::path scene_path, target_dir, out_dir;
   int frames = 0;  // the target's first N frames after t = 0; 0 = all
+  std::string fem_params;  // replaces the scene's [fem] parameter_file when given
   TrajectoryFitOptions fit;
 };
 
