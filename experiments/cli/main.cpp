@@ -346,6 +346,9 @@ int main(int argc, char** argv) {
   } catch (const wl::SceneError& e) {
     std::cerr << "weavelab: bad scene: " << e.what() << "\n";
     return 2;
+  } catch (const wl::RunReadError& e) {
+    std::cerr << "weavelab: bad target run: " << e.what() << "\n";
+    return 2;
   } catch (const wl::FemParameterError& e) {
     std::cerr << "weavelab: bad FEM parameter file: " << e.what() << "\n";
     return 2;
