@@ -69,6 +69,16 @@ class Integrator {
   const IntegratorStats& stats() const { return stats_; }
   std::function<void(const StepRecord&)> on_step;  // called after each accepted step
 
+  // Forward parameter sensitivities (docs/models.md §9.2): a method that offers
+  // them carries S_q = ∂q/∂p and S_v = ∂v/∂p (num_dofs × keys, zero at t0)
+  // for the model's parameter keys named here. Call before initialize(), which
+  // throws std::invalid_argument for a key the model does not differentiate.
+  virtual bool offers_sensitivities() const { return false; }
+  void track_sensitivities(std::vector<std::string> keys) { sensitivity_keys_ = std::move(keys); }
+  const std::vector<std::string>& sensitivity_keys() const { return sensitivity_keys_; }
+  const Eigen::MatrixXd& dq_dp() const { return dq_dp_; }
+  const Eigen::MatrixXd& dv_dp() const { return dv_dp_; }
+
  protected:
   // Fixed steps of opt_.dt from t_ to exactly t_out (the last one shortened),
   // honouring opt_.max_steps; `step(h)` advances t_, q_, v_ by one step.
@@ -90,6 +100,8 @@ class Integrator {
   Vec q_, v_;
   std::vector<int> fixed_;  // pinned DoFs (model.fixed_dofs())
   IntegratorStats stats_;
+  std::vector<std::string> sensitivity_keys_;
+  Eigen::MatrixXd dq_dp_, dv_dp_;
 };
 
 // Names accepted by make_integrator, in documentation order.

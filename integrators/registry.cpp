@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -46,6 +47,16 @@ void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, con
   fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
   for (int i : fixed_) v_[i] = 0.0;
   stats_ = {};
+  if (!sensitivity_keys_.empty()) {
+    if (!offers_sensitivities())
+      throw std::invalid_argument("integrator '" + name() + "' does not offer parameter sensitivities");
+    const std::vector<std::string> known = model.parameter_keys();
+    for (const std::string& key : sensitivity_keys_)
+      if (std::find(known.begin(), known.end(), key) == known.end())
+        throw std::invalid_argument("the " + model.name() + " model of this scene does not differentiate '" + key + "'");
+  }
+  dq_dp_ = Eigen::MatrixXd::Zero(model.num_dofs(), static_cast<Eigen::Index>(sensitivity_keys_.size()));
+  dv_dp_ = dq_dp_;
 }
 
 StepResult Integrator::advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step) {

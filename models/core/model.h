@@ -77,6 +77,14 @@ class Model {
     dfdp = Vec::Zero(num_dofs());
     return false;
   }
+  // Adds (∂M/∂p)·w for the parameter `key` at q into `out` (sized num_dofs());
+  // false when the mass does not depend on it.
+  virtual bool mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, Vec& out) const {
+    return false;
+  }
+  // Adds ((∂M/∂q)·dq)·w at q into `out`; only models whose mass depends on q
+  // (mass_depends_on_q()) add anything.
+  virtual void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const {}
   // Short facts for `weavelab info` and the run summary (name -> value).
   virtual std::map<std::string, std::string> describe() const = 0;
 };

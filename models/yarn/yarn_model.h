@@ -38,6 +38,7 @@ class YarnModel : public TermModel {
     int a, b;        // node ids
     bool warp;       // along u (warp) or v (weft)
     double ks;       // stretch stiffness of its yarn [N]
+    std::string type;  // its yarn type's name (scene yarn_types)
   };
   std::array<int, 8> segment_stencil(const Segment& s) const;
 

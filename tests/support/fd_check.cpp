@@ -23,6 +23,16 @@ Eval evaluate(const Term& term, int e, const std::vector<double>& q, const std::
   return r;
 }
 
+// The element's mass block at q (v = 0).
+Eigen::MatrixXd mass_block(const Term& term, int e, const std::vector<double>& q) {
+  const int n = term.stencil_size();
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+  const std::vector<double> v(n, 0.0);
+  term.evaluate(e, q.data(), v.data(), ElementOutput{f.data(), nullptr, nullptr, m.data()});
+  return m;
+}
+
 double rel_error(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& fd, double floor) {
   return (analytic - fd).norm() / (std::max(analytic.norm(), fd.norm()) + floor);
 }
@@ -178,6 +188,20 @@ FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(do
       why << term->name() << " parameter " << term->parameter_keys().at(k) << " element " << e << " state " << s
           << ": df/dp relative error " << err << " (|analytic| " << exact.norm() << ", |fd| " << fd.norm() << ")\n";
       rep.detail += why.str();
+    }
+    if (!term->provides_mass()) continue;
+    // ∂M/∂p against differences of the mass block in p.
+    Eigen::MatrixXd dm = Eigen::MatrixXd::Zero(n, n);
+    term->mass_parameter_derivative(e, k, st.q.data(), dm.data());
+    const Eigen::MatrixXd dm_fd = (mass_block(*hi, e, st.q) - mass_block(*lo, e, st.q)) / (2 * h);
+    const double merr = rel_error(dm.reshaped(), dm_fd.reshaped(), opt.floor);
+    largest = std::max(largest, dm.norm());
+    rep.force_error = std::max(rep.force_error, merr);
+    if (merr > opt.rtol || !(dm.norm() > opt.floor)) {
+      rep.ok = false;
+      rep.detail += term->name() + " parameter " + term->parameter_keys().at(k) + " state " + std::to_string(s) +
+                    ": dM/dp relative error " + std::to_string(merr) + " (|analytic| " + std::to_string(dm.norm()) +
+                    ")\n";
     }
   }
   if (!(largest > opt.floor)) {

@@ -55,7 +55,9 @@ FdReport check_element(const Term& term, int element, const std::vector<LocalSta
 // Parameter derivative (Term::parameter_derivative) of the term's k-th parameter
 // against central differences of the force in p, with a relative step:
 // `make(p)` builds the term (element `element` prepared) at parameter value p.
-// The derivative must not be zero at every state (a check of nothing).
+// Terms that provide mass also have ∂M/∂p (Term::mass_parameter_derivative)
+// checked against differences of the mass block. The derivative must not be
+// zero at every state (a check of nothing).
 FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(double)>& make, double p, int k,
                                     int element, const std::vector<LocalState>& states, const FdOptions& opt = {});
 
