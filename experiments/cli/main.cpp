@@ -336,6 +336,7 @@ int main(int argc, char** argv) {
         std::cerr << "weavelab: fidelity: " << e.what() << "\n";
         return 1;
       }
+    }
     if (*fit) {
       fitc.scene_path = fit_scene;
       fitc.target_dir = fit_target;
@@ -366,11 +367,6 @@ int main(int argc, char** argv) {
       for (const auto& p : r.parameters)
         std::cerr << "  " << p.key << " = " << p.value << " +- " << p.std_error << " (start " << p.start << ")\n";
       return r.converged ? 0 : 1;
-    }
-    wl::Scene scene = wl::load_scene(scene_path);
-    if (!fem_params.empty()) {
-      scene.fem.parameter_file = fem_params;
-      (void)wl::fem_material(scene);  // a bad file is exit 2 before anything is written
     }
     wl::Scene scene = wl::load_scene(scene_path);
     wl::RunOptions opt;
