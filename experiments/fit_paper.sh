@@ -36,7 +36,7 @@ fit() {  # name frames start-arguments...
   if [ -f "$out/$name/fit.json" ]; then echo "fit_paper.sh: $name done before, kept" >&2; return; fi
   echo "fit_paper.sh: $name ($frames frames)" >&2
   build/weavelab fit "$scene" --target "$out/target" --free "$keys" --frames "$frames" --integrator be-newton \
-    --out "$out/$name" "$@" || true  # a fit that ends unconverged is still recorded
+    --max-iterations 15 --out "$out/$name" "$@" || true  # a fit that ends unconverged is still recorded
   /usr/bin/python3 experiments/plot_fit.py "$out/$name"
 }
 

@@ -52,7 +52,7 @@ def main():
         fail(f"{d}: no protocol_N/fit.json (run experiments/fit_paper.sh)")
     scene = next(r for r in protocol if r)["scene"]["text"]
     value = lambda run, key: next(p["value"] for p in run["parameters"] if p["key"] == key)
-    ident = lambda run, key: next(p.get("identifiable", True) for p in run["parameters"] if p["key"] == key)
+    ident = lambda run, key: next(p.get("std_error") is not None for p in run["parameters"] if p["key"] == key)
     head = "| parameter | truth | paper (25 fr.) | ours 5 fr. | ours 10 fr. | ours 25 fr. | random starts, 5 fr. |"
     print(head)
     print("|" + "---|" * (head.count("|") - 1))
@@ -75,7 +75,7 @@ def main():
     times = [f"{r['wall_s'] / 60:.1f} min, {r['simulations']} sim." if r else "–" for r in protocol]
     rt = f"{statistics.mean(r['wall_s'] for r in randoms) / 60:.1f} min each" if randoms else "–"
     print(f"| wall time per fit | | {PAPER_HOURS_PER_FIT} | " + " | ".join(times) + f" | {rt} |")
-    print("\n¹ not identifiable from these frames: the fit cannot tell it (it stays near its start).")
+    print("\n¹ no standard error: the frames do not determine it (the fit cannot tell it; it stays near its start).")
 
 
 if __name__ == "__main__":
