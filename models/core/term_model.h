@@ -20,6 +20,7 @@ class TermModel : public Model {
   double potential_energy(const Vec& q) const override;
   void accept_step(double t, const Vec& q, const Vec& v, double h) override;
   std::vector<std::string> parameter_keys() const override;
+  std::vector<std::string> asymmetric_terms() const override;
   bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v, Vec& dfdp) override;
 
   const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
