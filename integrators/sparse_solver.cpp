@@ -22,8 +22,8 @@ constexpr int kSmallSystem = 5000;
 constexpr double kNearlySymmetric = 1e-3;
 // gmres: rebuild the preconditioner after a solve that took more Arnoldi
 // steps than this, or once it has served kMaxReuse matrices.
-constexpr int kRefactorIterations = 20;
-constexpr int kMaxReuse = 4;
+constexpr int kRefactorIterations = 10;
+constexpr int kMaxReuse = 3;
 constexpr int kGmresRestart = 40;
 constexpr int kGmresMaxIterations = 120;
 
