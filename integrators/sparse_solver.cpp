@@ -15,9 +15,10 @@ namespace {
 static_assert(std::is_same_v<std::int64_t, SuiteSparse_long>, "64-bit SuiteSparse interfaces expected");
 using Matrix64 = Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t>;
 
-// auto: below this many free DoFs UMFPACK's LU is the fastest solve (measured
-// with weavelab_bench on the hanging cloth, docs/design.md §11).
-constexpr int kSmallSystem = 5000;
+// auto: UMFPACK's LU below this many free DoFs. gmres is already faster at
+// 1317 DoFs (17×17 hanging cloth: 0.8× UMFPACK's factor+solve, weavelab_bench
+// in one run); smaller systems, not measured, keep the direct solve.
+constexpr int kSmallSystem = 1000;
 // auto: gmres for a measured ‖A − Aᵀ‖_F / ‖A‖_F below this.
 constexpr double kNearlySymmetric = 1e-3;
 // gmres: rebuild the preconditioner after a solve that took more Arnoldi

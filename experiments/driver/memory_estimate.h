@@ -1,8 +1,8 @@
 // Memory a run needs, estimated from the scene before anything is allocated
 // (docs/design.md §11): the DoF count from the grid, times a per-DoF cost
 // that grows like log₂(DoFs) with the fill of a nested-dissection
-// factorization of a 2D grid, fitted to peak resident sizes of the hanging
-// cloth measured at 17×17 to 257×257. A run whose estimate exceeds the memory
+// factorization of a 2D grid, fitted above the peak resident sizes of the
+// hanging cloth measured at 257×257. A run whose estimate exceeds the memory
 // available is refused (check_run_memory in run_settings.h).
 #pragma once
 #include <string>
