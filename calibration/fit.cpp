@@ -1,5 +1,7 @@
 #include "calibration/fit.h"
 
+#include "calibration/optimum_statistics.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,7 +14,6 @@
 #include <stdexcept>
 
 #include <ceres/ceres.h>
-#include <ceres/covariance.h>
 #include <Eigen/SVD>
 
 namespace wl {
@@ -231,35 +232,13 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
   result.material = base;
   for (int k = 0; k < n; ++k) material_value(result.material, free[k]) = std::exp(best.theta[k]);
 
-  // Weighted Jacobian at the optimum (residual count m × n, in θ).
-  double cost = 0;
-  std::vector<double> residuals;
-  ceres::CRSMatrix crs;
-  best.problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, &residuals, nullptr, &crs);
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int r = 0; r < crs.num_rows; ++r)
-    for (int i = crs.rows[r]; i < crs.rows[r + 1]; ++i) J(r, crs.cols[i]) = crs.values[i];
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J);
-  for (int i = 0; i < svd.singularValues().size(); ++i) result.singular_values.push_back(svd.singularValues()[i]);
+  // Weighted Jacobian, singular values and covariance of θ at the optimum.
+  const OptimumStatistics stats = optimum_statistics(*best.problem, best.theta.data(), n);
+  const Eigen::MatrixXd& J = stats.jacobian;
+  const Eigen::MatrixXd& C = stats.covariance;
+  result.singular_values = stats.singular_values;
+  result.covariance_message = stats.covariance_message;
   const double max_col = J.colwise().norm().maxCoeff();
-
-  // Covariance of θ: (JᵀJ)⁻¹ from Ceres, times the residual variance σ² = 2·cost/(m − n).
-  const int m = crs.num_rows;
-  const double sigma2 = m > n ? 2.0 * cost / (m - n) : std::numeric_limits<double>::quiet_NaN();
-  ceres::Covariance::Options copt;
-  copt.algorithm_type = ceres::DENSE_SVD;
-  ceres::Covariance cov(copt);
-  std::vector<std::pair<const double*, const double*>> blocks{{best.theta.data(), best.theta.data()}};
-  Eigen::MatrixXd C;
-  if (m <= n) {
-    result.covariance_message = "fewer residuals than parameters";
-  } else if (cov.Compute(blocks, best.problem.get())) {
-    C.resize(n, n);
-    cov.GetCovarianceBlock(best.theta.data(), best.theta.data(), C.data());  // row-major; C is symmetric
-    C *= sigma2;
-  } else {
-    result.covariance_message = "the Jacobian is rank deficient: some parameter is not identifiable (singular values)";
-  }
 
   for (const StartOutcome& s : result.starts)
     if (s.usable && s.cost <= best_cost * (1 + 1e-3) + 1e-20) ++result.starts_at_best;
@@ -273,7 +252,10 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     const double span = 1e-6 * (upper[k] - lower[k]);
     p.at_bound = best.theta[k] - lower[k] < span || upper[k] - best.theta[k] < span;
     p.weakly_determined = J.col(k).norm() < 1e-3 * max_col;
-    p.std_error = C.size() ? p.value * std::sqrt(std::max(0.0, C(k, k))) : std::numeric_limits<double>::quiet_NaN();
+    const bool held = std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) != stats.unidentifiable.end();
+    p.weakly_determined = p.weakly_determined || held;
+    p.std_error = C.size() && !held ? p.value * std::sqrt(std::max(0.0, C(k, k)))
+                                    : std::numeric_limits<double>::quiet_NaN();
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
     for (const StartOutcome& s : result.starts)
       if (s.usable && s.cost <= best_cost * (1 + 1e-3) + 1e-20) {
@@ -283,14 +265,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     p.start_spread = hi / lo - 1.0;
     result.parameters.push_back(p);
   }
-  if (C.size()) {
-    result.correlation.assign(n, std::vector<double>(n, 0.0));
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) {
-        const double d = std::sqrt(C(a, a) * C(b, b));
-        result.correlation[a][b] = d > 0 ? C(a, b) / d : (a == b ? 1.0 : 0.0);
-      }
-  }
+  if (C.size()) result.correlation = stats.correlation();
 
   // Per-curve fit: R_fem at the ladder and the relative RMS.
   for (const FitCurve& c : curves) {

@@ -41,6 +41,7 @@ StepResult BackwardEuler::step_linear(double h, int* iters) {
   rhs_ = h * (ev_.force + h * rhs_);
   if (!solver_->solve(rhs_, dv_)) return {Outcome::diverged, solver_->failure()};
   ++stats_.linear_solves;
+  if (dq_dp_.cols() > 0) propagate_linear_sensitivities(h, dv_);
   v_ += dv_;
   zero_fixed(v_, fixed_);
   q_ += h * v_;
@@ -98,6 +99,7 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
       v_ = v;
       zero_fixed(v_, fixed_);
       q_ = q0 + h * v_;
+      if (dq_dp_.cols() > 0) propagate_newton_sensitivities(h, q0, v0, m0);
       return {};
     }
   }

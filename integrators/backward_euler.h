@@ -20,6 +20,7 @@ class BackwardEuler : public Integrator {
   std::string name() const override { return variant_ == Variant::linear ? "be-linear" : "be-newton"; }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
+  bool offers_sensitivities() const override { return true; }
 
   // One step of size h from the current state (exposed for benchmarks).
   StepResult step(double h);
@@ -32,6 +33,13 @@ class BackwardEuler : public Integrator {
   StepResult step_linear(double h, int* iters);
   StepResult step_newton(double h, int* iters);
   void form_step_matrix(double h);  // a_ = M − h D − h² K from ev_
+  // Sensitivity updates (backward_euler_sensitivity.cpp, docs/models.md §9.2), called
+  // after the step's solve and before the state moves on.
+  void propagate_linear_sensitivities(double h, const Vec& dv);
+  void propagate_newton_sensitivities(double h, const Vec& q0, const Vec& v0, const SparseMatrix& m0);
+  // x = a_⁻¹ b by iterative refinement on the factorization in hand (of a_ or
+  // of a nearby matrix); refactorizes a_ when that does not converge.
+  bool solve_step_matrix(const Vec& b, Vec& x);
 
   Variant variant_;
   Evaluation ev_;

@@ -12,7 +12,9 @@
 
 namespace wl {
 
-enum class Outcome { ok, diverged, nan, step_too_small, max_steps, not_offered, interrupted };
+// invalid_state: the model cannot represent the state reached (Model::invalid_state;
+// e.g. sliding coordinates that meet, docs/models.md §2.2); the message names where.
+enum class Outcome { ok, diverged, nan, step_too_small, max_steps, not_offered, interrupted, invalid_state };
 const char* to_string(Outcome o);
 
 struct IntegratorStats {
@@ -74,6 +76,16 @@ class Integrator {
   const IntegratorStats& stats() const { return stats_; }
   std::function<void(const StepRecord&)> on_step;  // called after each accepted step
 
+  // Forward parameter sensitivities (docs/models.md §9.2): a method that offers
+  // them carries S_q = ∂q/∂p and S_v = ∂v/∂p (num_dofs × keys, zero at t0)
+  // for the model's parameter keys named here. Call before initialize(), which
+  // throws std::invalid_argument for a key the model does not differentiate.
+  virtual bool offers_sensitivities() const { return false; }
+  void track_sensitivities(std::vector<std::string> keys) { sensitivity_keys_ = std::move(keys); }
+  const std::vector<std::string>& sensitivity_keys() const { return sensitivity_keys_; }
+  const Eigen::MatrixXd& dq_dp() const { return dq_dp_; }
+  const Eigen::MatrixXd& dv_dp() const { return dv_dp_; }
+
  protected:
   // Fixed steps of opt_.dt from t_ to exactly t_out (the last one shortened),
   // honouring opt_.max_steps; `step(h)` advances t_, q_, v_ by one step.
@@ -89,6 +101,9 @@ class Integrator {
   SparseSolver::Options step_solver_options() const;
   // Copies a step matrix solver's statistics into stats_.
   void record_solver(const SparseSolver& solver);
+  // The free check_state below, preceded by the model's own rule for states it
+  // cannot represent (Outcome::invalid_state with the model's message).
+  StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) const;
 
   Model* model_ = nullptr;
   IntegratorOptions opt_;
@@ -96,6 +111,8 @@ class Integrator {
   Vec q_, v_;
   std::vector<int> fixed_;  // pinned DoFs (model.fixed_dofs())
   IntegratorStats stats_;
+  std::vector<std::string> sensitivity_keys_;
+  Eigen::MatrixXd dq_dp_, dv_dp_;
 };
 
 // Names accepted by make_integrator, in documentation order.

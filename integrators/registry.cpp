@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -18,6 +19,7 @@ const char* to_string(Outcome o) {
     case Outcome::max_steps: return "max_steps";
     case Outcome::not_offered: return "not_offered";
     case Outcome::interrupted: return "interrupted";
+    case Outcome::invalid_state: return "invalid_state";
   }
   return "unknown";
 }
@@ -31,6 +33,11 @@ StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt)
   return {};
 }
 
+StepResult Integrator::check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) const {
+  if (std::string why = model_->invalid_state(q); !why.empty()) return {Outcome::invalid_state, why};
+  return wl::check_state(q, v, opt);
+}
+
 void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
   model_ = &model;
   opt_ = opt;
@@ -40,6 +47,16 @@ void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, con
   fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
   for (int i : fixed_) v_[i] = 0.0;
   stats_ = {};
+  if (!sensitivity_keys_.empty()) {
+    if (!offers_sensitivities())
+      throw std::invalid_argument("integrator '" + name() + "' does not offer parameter sensitivities");
+    const std::vector<std::string> known = model.parameter_keys();
+    for (const std::string& key : sensitivity_keys_)
+      if (std::find(known.begin(), known.end(), key) == known.end())
+        throw std::invalid_argument("the " + model.name() + " model of this scene does not differentiate '" + key + "'");
+  }
+  dq_dp_ = Eigen::MatrixXd::Zero(model.num_dofs(), static_cast<Eigen::Index>(sensitivity_keys_.size()));
+  dv_dp_ = dq_dp_;
 }
 
 StepResult Integrator::advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step) {

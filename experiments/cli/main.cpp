@@ -1,14 +1,19 @@
 // weavelab command line: `weavelab run SCENE`, `weavelab info SCENE`,
 // `weavelab work-precision SCENE`, `weavelab stability SCENE`,
-// `weavelab calibrate SCENE`.
+// `weavelab calibrate SCENE`, `weavelab fidelity SCENE`, `weavelab fit SCENE --target RUN_DIR`.
 // Exit codes: 0 success, 1 numerical failure (outcome in the summary),
 // 2 bad scene, input file or arguments, or an output folder in use,
 // 3 output could not be written, 130 / 143 interrupted by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
+#include "calibration/scene_parameters.h"
 #include "experiments/driver/calibrate.h"
+#include "experiments/driver/determinism.h"
+#include "experiments/driver/fidelity.h"
+#include "experiments/driver/fit_command.h"
 #include "experiments/driver/interrupt.h"
 #include "experiments/driver/model_factory.h"
 #include "experiments/driver/run.h"
@@ -18,6 +23,7 @@
 #include "experiments/driver/work_precision.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_material.h"
+#include "experiments/output/run_reader.h"
 #include "models/scene/scene.h"
 
 namespace {
@@ -94,6 +100,7 @@ void load_experiment_scene(const ExperimentArgs& a, CLI::App* cmd, Config& c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  wl::hold_blas_threads();  // bitwise reproducible runs (README: reproducibility)
   CLI::App app{"weavelab: yarn-level and continuum cloth under pluggable integrators"};
   app.require_subcommand(1);
 
@@ -176,6 +183,54 @@ int main(int argc, char** argv) {
   calibrate->add_option("--out", cal_out, "Output folder (default results/calibration/<scene name>)");
   calibrate->add_flag("--quiet", cal_quiet, "No progress on stderr");
 
+  wl::FidelityConfig fid;
+  std::string fid_scene, fid_variants, fid_params, fid_out;
+  double fid_tolerance = 0, fid_duration = 0;
+  bool fid_quiet = false;
+  auto* fidelity = app.add_subcommand(
+      "fidelity", "Run the scene at a ladder of model fidelities (yarn without one term, frozen sliding, continuum "
+                  "at strides 1, 2, 4) and measure each against the full yarn model; writes fidelity.csv and .json");
+  fidelity->add_option("scene", fid_scene, "Scene file (TOML)")->required();
+  fidelity->add_option("--tolerance", fid_tolerance,
+                       "Worst-frame RMS distance a variant may have to count as good enough [m] (default 1 % of the "
+                       "cloth size)");
+  fidelity->add_option("--variants", fid_variants,
+                       "Comma-separated variants (default: all the scene allows): " +
+                           joined(wl::fidelity_variant_names()));
+  fidelity->add_option("--reference", fid.reference, "Yarn-level variant the others are measured against")
+      ->capture_default_str();
+  fidelity->add_option("--fem-params", fid_params,
+                       "Calibrated FEM parameter file (from `calibrate`); without it (or a scene parameter_file) the "
+                       "calibrated continuum variants are left out");
+  fidelity->add_option("--repeats", fid.repeats, "Runs per variant; CPU and wall time are their medians")
+      ->capture_default_str();
+  fidelity->add_option("--duration", fid_duration, "Simulated time [s] (overrides the scene)");
+  fidelity->add_option("--out", fid_out, "Output folder (default results/fidelity/<scene name>)");
+  fidelity->add_flag("--quiet", fid_quiet, "No progress on stderr");
+  wl::FitCommandConfig fitc;
+  std::string fit_scene, fit_target, fit_free, fit_out;
+  std::vector<std::string> fit_starts;
+  bool fit_quiet = false;
+  auto* fit = app.add_subcommand(
+      "fit", "Fit scene parameters to a recorded run's node trajectory (Ceres least squares with exact forward "
+             "sensitivities); fit.json, convergence.csv, frames.csv");
+  fit->add_option("scene", fit_scene, "Scene file (TOML) to simulate")->required();
+  fit->add_option("--target", fit_target, "Output folder of a `weavelab run` whose frames are fitted")->required();
+  fit->add_option("--free", fit_free,
+                  "Comma-separated scene keys to fit, e.g. contact.shear_modulus_Pa,yarn_types.yarn1.density_kg_per_m")
+      ->required();
+  fit->add_option("--start", fit_starts, "Start value KEY=VALUE of a fitted key (repeatable; default the scene's)");
+  fit->add_option("--frames", fitc.frames, "Fit the target's first N frames after t = 0 (default all)");
+  fit->add_option("--model", fitc.fit.model, "Model that is fitted: yarn, fem")->capture_default_str();
+  fit->add_option("--integrator", fitc.fit.integrator, "be-linear or be-newton (default the scene's)");
+  fit->add_option("--bound-factor", fitc.fit.bound_factor, "Bounds start/b ... start*b")->capture_default_str();
+  fit->add_option("--max-iterations", fitc.fit.max_iterations, "Ceres iterations")->capture_default_str();
+  fit->add_option("--fem-params", fitc.fem_params,
+                  "FEM parameter file (as written by `calibrate` or `fit --model fem`): the continuum's values "
+                  "where --start does not set them");
+  fit->add_option("--out", fit_out, "Output folder (default results/fit/<scene name>)");
+  fit->add_flag("--quiet", fit_quiet, "No progress on stderr");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -256,13 +311,72 @@ int main(int argc, char** argv) {
         return 1;
       }
     }
+    if (*fidelity) {
+      fid.scene_path = fid_scene;
+      fid.scene = wl::load_scene(fid_scene);
+      if (fidelity->count("--duration")) wl::apply_duration_override(fid.scene, fid_duration, fid.overrides);
+      wl::check_run_settings(fid.scene, fid.overrides);
+      if (fidelity->count("--tolerance")) fid.tolerance_m = wl::positive_option("--tolerance", fid_tolerance);
+      fid.variants = split_list(fid_variants);
+      if (fidelity->count("--variants") && fid.variants.empty()) throw std::invalid_argument("--variants: empty list");
+      if (!fid_params.empty()) fid.fem_params = fid_params;
+      fid.out_dir = wl::output_folder(fidelity->count("--out") ? std::optional(fid_out) : std::nullopt,
+                                      std::filesystem::path("results/fidelity") / std::filesystem::path(fid_scene).stem());
+      fid.progress = !fid_quiet;
+      const wl::FidelityPlan plan = wl::plan_fidelity(fid);  // every input checked; nothing written yet
+      try {
+        const wl::FidelityResult r = wl::run_fidelity(fid, plan);
+        const wl::FidelityChoice& c = r.within_tolerance;
+        std::fprintf(stderr, "weavelab: fidelity: cheapest within %.3g mm (%.3g %% of the %.3g mm cloth): %s, %.3g x "
+                             "faster than %s (CPU %.3g s against %.3g s); results in %s\n",
+                     1e3 * c.tolerance_m, 100 * c.tolerance_m / plan.cloth_size_m, 1e3 * plan.cloth_size_m,
+                     c.variant.c_str(), c.speedup, plan.reference.name.c_str(), c.cpu_s, r.rows.front().cpu_s,
+                     fid.out_dir.string().c_str());
+        return 0;
+      } catch (const std::filesystem::filesystem_error&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        std::cerr << "weavelab: fidelity: " << e.what() << "\n";
+        return 1;
+      }
+    if (*fit) {
+      fitc.scene_path = fit_scene;
+      fitc.target_dir = fit_target;
+      fitc.fit.free = split_list(fit_free);
+      if (fitc.fit.free.empty()) throw std::invalid_argument("--free: empty list");
+      for (const std::string& s : fit_starts) {
+        const auto eq = s.find('=');
+        const std::vector<double> v = eq == std::string::npos ? std::vector<double>{}
+                                                              : split_numbers(s.substr(eq + 1), "--start " + s.substr(0, eq));
+        if (v.size() != 1) throw std::invalid_argument("--start: got '" + s + "', expected KEY=VALUE with VALUE > 0");
+        fitc.fit.start[s.substr(0, eq)] = v[0];
+      }
+      if (fit->count("--max-iterations") && fitc.fit.max_iterations < 1)
+        throw std::invalid_argument("--max-iterations: got " + std::to_string(fitc.fit.max_iterations) + ", expected >= 1");
+      fitc.fit.progress = !fit_quiet;
+      fitc.out_dir = wl::output_folder(fit->count("--out") ? std::optional(fit_out) : std::nullopt,
+                                       std::filesystem::path("results/fit") / std::filesystem::path(fit_scene).stem());
+      const wl::FitCommandPlan plan = wl::plan_fit(fitc);  // every input checked; nothing written yet
+      const wl::TrajectoryFitResult r = wl::run_fit(fitc, plan);
+      if (r.final_rms.empty()) {
+        std::cerr << "weavelab: fit: " << r.message << "\n";
+        return 1;
+      }
+      std::cerr << "weavelab: fit: " << r.iterations << " iterations, " << r.simulations << " simulations, "
+                << r.wall_s << " s; RMS distance " << 1e3 * r.start_rms.back() << " mm at the start, "
+                << 1e3 * r.final_rms.back() << " mm fitted (last frame); " << r.message << "; results in "
+                << fitc.out_dir.string() << "\n";
+      for (const auto& p : r.parameters)
+        std::cerr << "  " << p.key << " = " << p.value << " +- " << p.std_error << " (start " << p.start << ")\n";
+      return r.converged ? 0 : 1;
+    }
     wl::Scene scene = wl::load_scene(scene_path);
     if (!fem_params.empty()) {
       scene.fem.parameter_file = fem_params;
       (void)wl::fem_material(scene);  // a bad file is exit 2 before anything is written
     }
+    wl::Scene scene = wl::load_scene(scene_path);
     wl::RunOptions opt;
-    if (!fem_params.empty()) opt.overrides["fem.parameter_file"] = fem_params;
     opt.model = model;
     opt.progress = !quiet;
     wl::RunOverrides ov;
@@ -273,6 +387,7 @@ int main(int argc, char** argv) {
     if (run->count("--output-interval")) ov.output_interval_s = output_interval;
     if (run->count("--rtol")) ov.rtol = rtol;
     ov.adaptive = adaptive;
+    if (run->count("--fem-params")) ov.fem_parameter_file = fem_params;
     wl::apply_run_overrides(scene, ov, opt.overrides);  // every rule before anything is written
     opt.out_dir = wl::output_folder(run->count("--out") ? std::optional(out_dir) : std::nullopt,
                                     std::filesystem::path("results") / std::filesystem::path(scene_path).stem() / model);
@@ -291,6 +406,9 @@ int main(int argc, char** argv) {
     return 0;
   } catch (const wl::SceneError& e) {
     std::cerr << "weavelab: bad scene: " << e.what() << "\n";
+    return 2;
+  } catch (const wl::RunReadError& e) {
+    std::cerr << "weavelab: bad target run: " << e.what() << "\n";
     return 2;
   } catch (const wl::FemParameterError& e) {
     std::cerr << "weavelab: bad FEM parameter file: " << e.what() << "\n";

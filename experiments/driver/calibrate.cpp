@@ -68,6 +68,8 @@ VariantRun run_continuum_variant(const std::string& name, const Scene& scene, co
   return v;
 }
 
+}  // namespace
+
 Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
   s.fem.parameter_file.clear();
   s.fem.border_strip = border_strip;
@@ -81,6 +83,8 @@ Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
   s.fem.weft_bending_N_m = m.weft_bending_N_m;
   return s;
 }
+
+namespace {
 
 double mean(const std::vector<double>& x) { return x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / x.size(); }
 double maximum(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end()); }

@@ -57,4 +57,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& config, const CalibrateP
 // yarn level's total mass: Σ_yarns ρ·(length) / ((wefts−1)(warps−1)L²).
 double matched_areal_density(const Scene& scene);
 
+// The scene with every [fem] material value set from `m` (no parameter file)
+// and [fem] border_strip set to `border_strip`.
+Scene with_material(Scene s, const FemMaterial& m, bool border_strip);
+
 }  // namespace wl

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <ctime>
 
+#include "experiments/driver/determinism.h"
+
 namespace wl {
 
 std::string utc_now() {
@@ -48,9 +50,12 @@ Json scene_json(const std::filesystem::path& path, const std::string& text, cons
 void add_provenance(Json& j) {
   j.set("git_revision", git_revision());
   j.set("machine", Json(machine_info()));
-  const char* omp = std::getenv("OMP_NUM_THREADS");
+  j.set("threads", thread_counts());
   Json env = Json::object();
-  env.set("OMP_NUM_THREADS", omp ? Json(std::string(omp)) : Json());
+  for (const char* name : {"OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS"}) {
+    const char* value = std::getenv(name);
+    env.set(name, value ? Json(std::string(value)) : Json());
+  }
   j.set("environment", env);
 }
 

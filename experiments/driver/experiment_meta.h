@@ -17,7 +17,8 @@ Json statistics_json(const IntegratorStats& stats);
 // file, name, text, overrides, duration_s, output_interval_s, nodes (warps × wefts)
 Json scene_json(const std::filesystem::path& path, const std::string& text, const Scene& scene,
                 const std::map<std::string, std::string>& overrides);
-// Sets git_revision, machine and environment (OMP_NUM_THREADS) on an object.
+// Sets git_revision, machine, threads (the OpenMP and OpenBLAS thread counts in
+// force, determinism.h) and environment (OMP_NUM_THREADS, OPENBLAS_NUM_THREADS) on an object.
 void add_provenance(Json& j);
 
 }  // namespace wl

@@ -7,6 +7,7 @@
 
 #include "experiments/driver/memory_estimate.h"
 #include "integrators/integrator.h"
+#include "models/fem/fem_material.h"
 
 namespace wl {
 namespace {
@@ -129,6 +130,15 @@ void apply_run_overrides(Scene& scene, const RunOverrides& o, std::map<std::stri
   if (o.adaptive || o.rtol) {
     scene.adaptive = true;
     record["adaptive"] = "true";
+  }
+  if (o.fem_parameter_file) {
+    const std::string& path = *o.fem_parameter_file;
+    std::error_code ec;
+    if (path.empty() || !std::filesystem::is_regular_file(path, ec))
+      throw SettingError("--fem-params", "'" + path + "'", "an existing FEM parameter file (TOML)");
+    scene.fem.parameter_file = path;
+    record["fem.parameter_file"] = path;
+    (void)fem_material(scene);  // the file's own errors: FemParameterError with its line
   }
   check_run_settings(scene, record);
 }

@@ -27,10 +27,12 @@ struct RunOverrides {
   std::optional<std::string> integrator, linear_solver;
   std::optional<double> dt_s, duration_s, output_interval_s, rtol;  // --rtol implies adaptive, atol = 1e-3 rtol
   bool adaptive = false;
+  std::optional<std::string> fem_parameter_file;  // --fem-params: replaces [fem] parameter_file
 };
 
 // Applies the overrides to `scene`, records them in `record` (scene key →
-// value, as the summary lists them) and checks the result with check_run_settings.
+// value, as the summary lists them) and checks the result with check_run_settings;
+// a parameter file must exist (SettingError) and parse (FemParameterError, file:line).
 void apply_run_overrides(Scene& scene, const RunOverrides& overrides, std::map<std::string, std::string>& record);
 
 // Checks a scene's run settings: the time rules and the integrator name. A

@@ -67,6 +67,10 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
 
   timed([&] { integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), opt); });
   int reached = 0;
+  Evaluation scratch;
+  if (record.energies)
+    run.initial_energy_J = kinetic_energy(*model, 0.0, model->initial_q(), model->initial_v(), scratch) +
+                           model->potential_energy(model->initial_q());
   for (double t_out : times) {
     timed([&] { run.result = integrator->advance_to(t_out); });
     if (run.result.outcome == Outcome::ok && run.max_node_speed > record.speed_bound)
@@ -77,6 +81,10 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
     run.trajectory.times.push_back(t_out);
     run.trajectory.positions.col(reached) = Eigen::Map<const Eigen::VectorXd>(f.points.data(), 3 * nodes);
     ++reached;
+    if (record.energies) {
+      run.kinetic_J.push_back(kinetic_energy(*model, integrator->t(), integrator->q(), integrator->v(), scratch));
+      run.potential_J.push_back(model->potential_energy(integrator->q()));
+    }
     if (record.on_frame) record.on_frame(f);
   }
   run.trajectory.positions.conservativeResize(Eigen::NoChange, reached);

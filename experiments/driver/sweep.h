@@ -44,6 +44,10 @@ struct RecordedRun {
   double max_node_speed = 0.0; // largest Model::max_node_speed over all accepted steps [m/s]
   int dofs = 0;
   Trajectory trajectory;       // the output times reached
+  // Kinetic ½vᵀM(q)v and potential energy at the output times reached, when
+  // RecordOptions::energies (outside the timed sections) [J].
+  std::vector<double> kinetic_J, potential_J;
+  double initial_energy_J = 0.0;  // T + V at t = 0, when RecordOptions::energies [J]
 };
 
 struct RecordOptions {
@@ -54,6 +58,7 @@ struct RecordOptions {
   std::string label;      // prefix of the progress lines
   // Called with every recorded output frame (after the trajectory column is stored).
   std::function<void(const Frame&)> on_frame;
+  bool energies = false;  // fill RecordedRun::kinetic_J and potential_J
 };
 
 // Runs `scene` with `model_name` ("yarn", "fem") and `integrator_name` to the

@@ -221,4 +221,60 @@ bool Assembly::add_parameter_derivative(const std::string& key, const Vec& q, co
   return any;
 }
 
+void Assembly::add_mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, const Vec& constants,
+                                            Vec& out) const {
+  std::vector<double> ql, dql, ml;
+  for (const TermPlan& plan : plans_) {
+    const Term& term = *plan.term;
+    if (!term.provides_mass()) continue;
+    const int n = plan.n;
+    ql.resize(n);
+    dql.resize(n);
+    ml.resize(n * n);
+    for (int e = 0; e < term.num_elements(); ++e) {
+      auto s = term.stencil(e);
+      for (int a = 0; a < n; ++a) {
+        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
+        dql[a] = is_dof(s[a]) ? dq[s[a]] : 0.0;
+      }
+      std::fill(ml.begin(), ml.end(), 0.0);
+      term.mass_directional_derivative(e, ql.data(), dql.data(), ml.data());
+      for (int a = 0; a < n; ++a) {
+        if (!is_dof(s[a])) continue;
+        for (int b = 0; b < n; ++b)
+          if (is_dof(s[b])) out[s[a]] += ml[a + n * b] * w[s[b]];
+      }
+    }
+  }
+}
+
+bool Assembly::add_mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, const Vec& constants,
+                                          Vec& out) const {
+  bool any = false;
+  std::vector<double> ql, ml;
+  for (const TermPlan& plan : plans_) {
+    const Term& term = *plan.term;
+    if (!term.provides_mass()) continue;
+    const std::vector<std::string> keys = term.parameter_keys();
+    const auto it = std::find(keys.begin(), keys.end(), key);
+    if (it == keys.end()) continue;
+    any = true;
+    const int k = static_cast<int>(it - keys.begin()), n = plan.n;
+    ql.resize(n);
+    ml.resize(n * n);
+    for (int e = 0; e < term.num_elements(); ++e) {
+      auto s = term.stencil(e);
+      for (int a = 0; a < n; ++a) ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
+      std::fill(ml.begin(), ml.end(), 0.0);
+      term.mass_parameter_derivative(e, k, ql.data(), ml.data());
+      for (int a = 0; a < n; ++a) {
+        if (!is_dof(s[a])) continue;
+        for (int b = 0; b < n; ++b)
+          if (is_dof(s[b])) out[s[a]] += ml[a + n * b] * w[s[b]];
+      }
+    }
+  }
+  return any;
+}
+
 }  // namespace wl

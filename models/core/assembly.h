@@ -45,6 +45,12 @@ class Assembly {
   // that depends on it into `dfdp`; returns whether any term does.
   bool add_parameter_derivative(const std::string& key, const Vec& q, const Vec& v, const Vec& constants,
                                 Vec& dfdp) const;
+  // Adds (∂M/∂p)·w for the parameter `key` into `out`; returns whether any
+  // mass-providing term depends on it.
+  bool add_mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, const Vec& constants,
+                                  Vec& out) const;
+  // Adds ((∂M/∂q)·dq)·w into `out` (constants do not move: dq is zero there).
+  void add_mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, const Vec& constants, Vec& out) const;
 
  private:
   struct TermPlan {

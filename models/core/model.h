@@ -60,6 +60,11 @@ class Model {
   // History update after an accepted step of size h ending at (t, q, v).
   virtual void accept_step(double t, const Vec& q, const Vec& v, double h) = 0;
 
+  // Why the model cannot represent state q (e.g. sliding coordinates that meet),
+  // naming the node or yarn; empty when it can. Integrators check every accepted
+  // state (Outcome::invalid_state). Only finite values are judged: NaN is check_state's.
+  virtual std::string invalid_state(const Vec& q) const { return {}; }
+
   // Largest node speed ‖ẋ‖ [m/s]; the default reads v as consecutive 3-vectors.
   virtual double max_node_speed(const Vec& v) const {
     double m = 0.0;
@@ -77,6 +82,14 @@ class Model {
     dfdp = Vec::Zero(num_dofs());
     return false;
   }
+  // Adds (∂M/∂p)·w for the parameter `key` at q into `out` (sized num_dofs());
+  // false when the mass does not depend on it.
+  virtual bool mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, Vec& out) const {
+    return false;
+  }
+  // Adds ((∂M/∂q)·dq)·w at q into `out`; only models whose mass depends on q
+  // (mass_depends_on_q()) add anything.
+  virtual void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const {}
   // Short facts for `weavelab info` and the run summary (name -> value).
   virtual std::map<std::string, std::string> describe() const = 0;
 };

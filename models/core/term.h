@@ -71,6 +71,13 @@ class Term {
   virtual std::vector<std::string> parameter_keys() const { return {}; }
   virtual void parameter_derivative(int /*e*/, int /*k*/, const double* /*q*/, const double* /*v*/,
                                     double* /*dfdp*/) const {}
+  // ∂M/∂p of one element (n×n, column-major, added into dmdp) for terms that
+  // provide mass; forward sensitivities need it for density (docs/models.md §9.2).
+  virtual void mass_parameter_derivative(int /*e*/, int /*k*/, const double* /*q*/, double* /*dmdp*/) const {}
+  // Directional derivative of the element's mass block, (∂M/∂q)·dq (n×n, added
+  // into dm), for terms whose mass depends on q (docs/models.md §9.2).
+  virtual void mass_directional_derivative(int /*e*/, const double* /*q*/, const double* /*dq*/,
+                                           double* /*dm*/) const {}
 };
 
 // Helper base for terms whose elements all have N local DoFs: stores stencils
@@ -90,6 +97,48 @@ class StencilTerm : public Term {
 
  protected:
   std::vector<std::array<int, N>> stencils_;
+};
+
+// A term whose every element is proportional to one scene parameter p:
+// f_e = p·g_e(q, v) and M_e = p·m_e(q) (stretch ∝ Y, bending ∝ B, shear ∝ S,
+// inertia and gravity ∝ ρ), so ∂f_e/∂p = f_e/p and ∂M_e/∂p = M_e/p
+// (docs/models.md §9.1). The model names each element's parameter with tag_last().
+template <int N>
+class ProportionalParameterTerm : public StencilTerm<N> {
+ public:
+  // The element added last is proportional to the parameter `key` of value
+  // `value` (> 0; a zero parameter leaves the element untagged: not differentiable).
+  void tag_last(const std::string& key, double value) {
+    element_key_.resize(this->stencils_.size(), -1);
+    if (!(value > 0.0) || element_key_.empty()) return;
+    int k = 0;
+    while (k < static_cast<int>(keys_.size()) && keys_[k] != key) ++k;
+    if (k == static_cast<int>(keys_.size())) {
+      keys_.push_back(key);
+      values_.push_back(value);
+    }
+    element_key_.back() = k;
+  }
+  std::vector<std::string> parameter_keys() const override { return keys_; }
+  void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override {
+    if (!tagged(e, k)) return;
+    typename StencilTerm<N>::LVec f = StencilTerm<N>::LVec::Zero();
+    this->evaluate(e, q, v, ElementOutput{f.data()});
+    for (int a = 0; a < N; ++a) dfdp[a] += f[a] / values_[k];
+  }
+  void mass_parameter_derivative(int e, int k, const double* q, double* dmdp) const override {
+    if (!this->provides_mass() || !tagged(e, k)) return;
+    typename StencilTerm<N>::LVec f = StencilTerm<N>::LVec::Zero(), v = f;
+    typename StencilTerm<N>::LMat m = StencilTerm<N>::LMat::Zero();
+    this->evaluate(e, q, v.data(), ElementOutput{f.data(), nullptr, nullptr, m.data()});
+    for (int a = 0; a < N * N; ++a) dmdp[a] += m.data()[a] / values_[k];
+  }
+
+ private:
+  bool tagged(int e, int k) const { return e < static_cast<int>(element_key_.size()) && element_key_[e] == k; }
+  std::vector<std::string> keys_;
+  std::vector<double> values_;
+  std::vector<int> element_key_;  // per element: index into keys_, −1 untagged
 };
 
 }  // namespace wl

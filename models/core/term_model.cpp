@@ -86,4 +86,12 @@ bool TermModel::force_parameter_derivative(const std::string& key, double, const
   return assembly_->add_parameter_derivative(key, q, v, constants_, dfdp);
 }
 
+void TermModel::mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const {
+  if (mass_depends_on_q()) assembly_->add_mass_directional_product(q, dq, w, constants_, out);
+}
+
+bool TermModel::mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, Vec& out) const {
+  return assembly_->add_mass_parameter_product(key, q, w, constants_, out);
+}
+
 }  // namespace wl

@@ -63,6 +63,7 @@ void FemModel::build() {
     for (int e = 0; e < nt; ++e) {
       const double m = material_.areal_density_kg_per_m2 * rest[e].area;
       t->add(triangle_stencil(mesh_.triangles[e]), m);
+      t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
       for (int v : mesh_.triangles[e]) vertex_mass_[v] += m / 3.0;
     }
     terms_.push_back(std::move(t));
@@ -108,7 +109,10 @@ void FemModel::build() {
   const Vec3 g(scene_.gravity_m_per_s2[0], scene_.gravity_m_per_s2[1], scene_.gravity_m_per_s2[2]);
   if (on.gravity && g.norm() > 0) {
     auto t = std::make_unique<NodalGravityTerm>(g);
-    for (int i = 0; i < nv; ++i) t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
+    for (int i = 0; i < nv; ++i) {
+      t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
+      t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
+    }
     terms_.push_back(std::move(t));
   }
   // Wind: the yarn model's term and parameters, on every triangle (docs/models.md §3.9, §6.6).
@@ -157,18 +161,27 @@ int FemModel::vertex_of_node(const NodeRef& node) const {
   return v;
 }
 
-bool FemModel::surface_point(const Vec& q, const Vec2& uv, Vec3* x) const {
+bool FemModel::surface_weights(const Vec2& uv, std::array<int, 3>* vertices, Vec3* weights) const {
   for (const auto& tri : mesh_.triangles) {
     const Vec2 a = mesh_.uv[tri[0]], e1 = mesh_.uv[tri[1]] - a, e2 = mesh_.uv[tri[2]] - a, p = uv - a;
     const double det = e1.x() * e2.y() - e1.y() * e2.x();
     const double b1 = (p.x() * e2.y() - p.y() * e2.x()) / det, b2 = (e1.x() * p.y() - e1.y() * p.x()) / det;
     const double tol = 1e-12;
     if (b1 >= -tol && b2 >= -tol && b1 + b2 <= 1 + tol) {
-      *x = (1 - b1 - b2) * position(q, tri[0]) + b1 * position(q, tri[1]) + b2 * position(q, tri[2]);
+      *vertices = {tri[0], tri[1], tri[2]};
+      *weights = Vec3(1 - b1 - b2, b1, b2);
       return true;
     }
   }
   return false;
+}
+
+bool FemModel::surface_point(const Vec& q, const Vec2& uv, Vec3* x) const {
+  std::array<int, 3> v;
+  Vec3 w;
+  if (!surface_weights(uv, &v, &w)) return false;
+  *x = w[0] * position(q, v[0]) + w[1] * position(q, v[1]) + w[2] * position(q, v[2]);
+  return true;
 }
 
 std::vector<FaceTension> FemModel::tension_map(const Vec& q) const {

@@ -12,6 +12,7 @@
 // grid mesh always has that vertex; a mesh file uses the nearest vertex in UV
 // and rejects a point farther than the mesh's longest UV edge (outside the mesh).
 #pragma once
+#include <array>
 #include <map>
 
 #include "models/core/term_model.h"
@@ -44,6 +45,8 @@ class FemModel : public TermModel {
   // The deformed surface at material point uv (linear interpolation in the
   // triangle that contains it); false when uv lies outside the mesh.
   bool surface_point(const Vec& q, const Vec2& uv, Vec3* x) const;
+  // The same point as weights w of the vertices v of its triangle: x = Σ w_i x(v_i).
+  bool surface_weights(const Vec2& uv, std::array<int, 3>* vertices, Vec3* weights) const;
   // Optitex tension map per triangle (tension_map.h) at state q.
   std::vector<FaceTension> tension_map(const Vec& q) const;
 

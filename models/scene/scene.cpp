@@ -9,7 +9,7 @@
 //   [cloth]
 //     warps, wefts           integers, 3 ≤ n ≤ 16384 (yarn counts; nodes (i, j): i < wefts, j < warps)
 //     spacing_m              L > 0
-//     radius_m               R, 0 < R < spacing_m
+//     radius_m               R, 0 < R < spacing_m/√2 (shear lock angle 2 arcsin(R/L) < π/2)
 //     sliding                bool (false: u, v frozen)
 //     warp_yarn_types        non-empty array of yarn type names, cycled over the warps (j)
 //     weft_yarn_types        same, cycled over the wefts (i)
@@ -58,6 +58,7 @@
 #include "models/scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -159,10 +160,13 @@ void read_cloth(TableReader& top, Scene& s, const std::map<std::string, YarnType
     c->read_int("wefts", s.wefts, yarns_expected, yarn_count);
     c->read_number("spacing_m", s.spacing_m, "a number > 0 (m)", positive);
     const double L = s.spacing_m;
-    c->read_number("radius_m", s.radius_m, "a number > 0 and < cloth.spacing_m" + eq(L),
-                   [L](double r) { return r > 0.0 && r < L; });
-    if (s.radius_m >= s.spacing_m)  // only reachable with the default radius
-      c->fail_key("spacing_m", "a number > cloth.radius_m" + eq(s.radius_m), format_number(s.spacing_m));
+    // R/L < 1/√2 keeps the shear lock angle φ_l = 2 arcsin(R/L) inside [0, π/2) (docs/models.md §3.4.3).
+    const std::string lock = ", so that the shear lock angle 2·arcsin(R/L) stays below π/2";
+    c->read_number("radius_m", s.radius_m, "a number > 0 and < cloth.spacing_m/√2" + eq(L / std::sqrt(2.0)) + lock,
+                   [L](double r) { return r > 0.0 && r * std::sqrt(2.0) < L; });
+    if (s.radius_m * std::sqrt(2.0) >= s.spacing_m)  // only reachable with the default radius
+      c->fail_key("spacing_m", "a number > √2·cloth.radius_m" + eq(std::sqrt(2.0) * s.radius_m) + lock,
+                  format_number(s.spacing_m));
     c->read_bool("sliding", s.sliding);
     c->read_string_array("warp_yarn_types", s.warp_yarn_types, names_expected);
     c->read_string_array("weft_yarn_types", s.weft_yarn_types, names_expected);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "models/common/wind.h"
+#include "models/scene/parameter_keys.h"
 #include "models/yarn/terms/bending.h"
 #include "models/yarn/terms/friction_cirio.h"
 #include "models/yarn/terms/friction_gong.h"
@@ -54,6 +55,8 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
 
   // Per-yarn stiffness: warp j, weft i (k_s = Y·πR², k_b = B·πR², docs/models.md §3.2, §3.3).
   std::vector<double> warp_ks(nv), warp_kb(nv), warp_rho(nv), weft_ks(nu), weft_kb(nu), weft_rho(nu);
+  auto warp_name = [&](int j) { return scene.warp_yarn_types[j % scene.warp_yarn_types.size()]; };
+  auto weft_name = [&](int i) { return scene.weft_yarn_types[i % scene.weft_yarn_types.size()]; };
   for (int j = 0; j < nv; ++j) {
     const YarnType& y = scene.warp_type(j);
     warp_ks[j] = y.stretch_modulus_Pa * area;
@@ -68,42 +71,58 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   }
 
   for (int j = 0; j < nv; ++j)
-    for (int i = 0; i + 1 < nu; ++i) segments_.push_back({grid_.node(i, j), grid_.node(i + 1, j), true, warp_ks[j]});
+    for (int i = 0; i + 1 < nu; ++i)
+      segments_.push_back({grid_.node(i, j), grid_.node(i + 1, j), true, warp_ks[j], warp_name(j)});
   for (int i = 0; i < nu; ++i)
-    for (int j = 0; j + 1 < nv; ++j) segments_.push_back({grid_.node(i, j), grid_.node(i, j + 1), false, weft_ks[i]});
+    for (int j = 0; j + 1 < nv; ++j)
+      segments_.push_back({grid_.node(i, j), grid_.node(i, j + 1), false, weft_ks[i], weft_name(i)});
   auto rho_of = [&](const Segment& s) {
     return s.warp ? warp_rho[s.a / nu] : weft_rho[s.a % nu];
   };
+  // Each element is tagged with the scene parameter it is proportional to (docs/models.md §9.1).
+  auto type_of = [&](const Segment& s) -> const YarnType& { return scene.yarn_types.at(s.type); };
 
   const TermSwitches& on = scene.terms;
   const ContactParams& c = scene.contact;
   if (on.inertia) {
     auto t = std::make_unique<SegmentInertiaTerm>();
-    for (const Segment& s : segments_) t->add(segment_stencil(s), rho_of(s));
+    for (const Segment& s : segments_) {
+      t->add(segment_stencil(s), rho_of(s));
+      t->tag_last(yarn_type_key(s.type, kDensityField), type_of(s).density_kg_per_m);
+    }
     terms_.push_back(std::move(t));
   }
   if (on.stretch) {
     auto t = std::make_unique<StretchTerm>();
-    for (const Segment& s : segments_) t->add(segment_stencil(s), s.ks);
+    for (const Segment& s : segments_) {
+      t->add(segment_stencil(s), s.ks);
+      t->tag_last(yarn_type_key(s.type, kStretchModulusField), type_of(s).stretch_modulus_Pa);
+    }
     terms_.push_back(std::move(t));
   }
   const Vec3 g(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1], scene.gravity_m_per_s2[2]);
   if (on.gravity && g.norm() > 0) {
     auto t = std::make_unique<GravityTerm>(g);
-    for (const Segment& s : segments_) t->add(segment_stencil(s), rho_of(s));
+    for (const Segment& s : segments_) {
+      t->add(segment_stencil(s), rho_of(s));
+      t->tag_last(yarn_type_key(s.type, kDensityField), type_of(s).density_kg_per_m);
+    }
     terms_.push_back(std::move(t));
   }
   if (on.bending) {
     auto t = std::make_unique<BendingTerm>();
-    auto add = [&](int n0, int n1, int n2, bool warp, double kb) {
+    auto add = [&](int n0, int n1, int n2, bool warp, double kb, const std::string& type) {
       const NodeDofs &d0 = grid_.dofs(n0), &d1 = grid_.dofs(n1), &d2 = grid_.dofs(n2);
       const int c1 = warp ? d1.u : d1.v, c2 = warp ? d2.u : d2.v;
       t->add({d0.x, d0.x + 1, d0.x + 2, d1.x, d1.x + 1, d1.x + 2, d2.x, d2.x + 1, d2.x + 2, c1, c2}, kb);
+      t->tag_last(yarn_type_key(type, kBendingModulusField), scene.yarn_types.at(type).bending_modulus_Pa);
     };
     for (int j = 0; j < nv; ++j)
-      for (int i = 1; i + 1 < nu; ++i) add(grid_.node(i, j), grid_.node(i + 1, j), grid_.node(i - 1, j), true, warp_kb[j]);
+      for (int i = 1; i + 1 < nu; ++i)
+        add(grid_.node(i, j), grid_.node(i + 1, j), grid_.node(i - 1, j), true, warp_kb[j], warp_name(j));
     for (int i = 0; i < nu; ++i)
-      for (int j = 1; j + 1 < nv; ++j) add(grid_.node(i, j), grid_.node(i, j + 1), grid_.node(i, j - 1), false, weft_kb[i]);
+      for (int j = 1; j + 1 < nv; ++j)
+        add(grid_.node(i, j), grid_.node(i, j + 1), grid_.node(i, j - 1), false, weft_kb[i], weft_name(i));
     terms_.push_back(std::move(t));
   }
 
@@ -132,8 +151,10 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
               // Lock only where the warp and the weft interlace (docs/models.md §3.4.4).
               const bool lock = grid_.sign(i, j) != grid_.sign(i1, j) && grid_.sign(i, j) != grid_.sign(i, j3);
               gong->add(st, n0, c.shear_modulus_Pa * area, lock);
+              gong->tag_last(kShearModulusKey, c.shear_modulus_Pa);
             } else {
               cirio->add(st, c.shear_modulus_Pa * area * L);
+              cirio->tag_last(kShearModulusKey, c.shear_modulus_Pa);
             }
           }
     if (gong) terms_.push_back(std::move(gong));
@@ -226,6 +247,23 @@ double YarnModel::max_node_speed(const Vec& v) const {
   double m = 0.0;
   for (int k = 0; k < grid_.num_nodes(); ++k) m = std::max(m, v.segment<3>(grid_.dofs(k).x).norm());
   return m;
+}
+
+std::string YarnModel::invalid_state(const Vec& q) const {
+  if (!scene_.sliding) return {};
+  const int nu = grid_.nu();
+  for (const Segment& s : segments_) {
+    const NodeDofs &a = grid_.dofs(s.a), &b = grid_.dofs(s.b);
+    const double ca = coordinate(q, s.warp ? a.u : a.v), cb = coordinate(q, s.warp ? b.u : b.v);
+    if (!(std::isfinite(ca) && std::isfinite(cb)) || cb - ca > 0.0) continue;
+    std::ostringstream why;
+    why.precision(17);
+    why << "sliding coordinates meet or cross on " << (s.warp ? "warp " : "weft ") << (s.warp ? s.a / nu : s.a % nu)
+        << " between crossings (" << s.a % nu << ", " << s.a / nu << ") and (" << s.b % nu << ", " << s.b / nu << "): "
+        << (s.warp ? "u" : "v") << " = " << ca << " and " << cb << " (a segment needs increasing coordinates)";
+    return why.str();
+  }
+  return {};
 }
 
 double YarnModel::coordinate(const Vec& q, int index) const {

@@ -20,6 +20,9 @@ class YarnModel : public TermModel {
   bool mass_depends_on_q() const override { return scene_.sliding; }
   Frame frame(double t, const Vec& q, const Vec& v) override;
   double max_node_speed(const Vec& v) const override;
+  // Sliding coordinates of neighbouring crossings that meet or cross (Δu ≤ 0 on
+  // a segment, docs/models.md §2.2, §5.10), naming the yarn and the crossings.
+  std::string invalid_state(const Vec& q) const override;
   std::map<std::string, std::string> describe() const override;
 
   const WovenGrid& grid() const { return grid_; }
@@ -35,6 +38,7 @@ class YarnModel : public TermModel {
     int a, b;        // node ids
     bool warp;       // along u (warp) or v (weft)
     double ks;       // stretch stiffness of its yarn [N]
+    std::string type;  // its yarn type's name (scene yarn_types)
   };
   std::array<int, 8> segment_stencil(const Segment& s) const;
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdlib.h>
 #include <sys/wait.h>
 
 namespace {
@@ -101,6 +102,56 @@ TEST_F(Cli, ShortRunWritesFramesMetricsAndSummary) {
   EXPECT_TRUE(fs::exists(out / "frames"));
 }
 
+std::string file_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// README: reproducibility. Runs under different OpenMP thread counts, and with
+// OpenBLAS left to its default or set to one thread, write the same bits; the
+// summary records the thread counts in force.
+TEST_F(Cli, RunsAreBitwiseIdenticalAcrossThreadCounts) {
+  const std::vector<std::pair<const char*, const char*>> settings = {{nullptr, nullptr}, {"1", "1"}, {"2", nullptr}};
+  for (size_t k = 0; k < settings.size(); ++k) {
+    auto set = [](const char* name, const char* value) { value ? ::setenv(name, value, 1) : ::unsetenv(name); };
+    set("OMP_NUM_THREADS", settings[k].first);
+    set("OPENBLAS_NUM_THREADS", settings[k].second);
+    const Result r = run_cli(std::string("run '") + WEAVELAB_SOURCE_DIR +
+                                 "/experiments/scenes/hanging_wind.toml' --duration 0.02 --quiet --out '" +
+                                 (dir_ / ("run" + std::to_string(k))).string() + "'",
+                             dir_);
+    ::unsetenv("OMP_NUM_THREADS");
+    ::unsetenv("OPENBLAS_NUM_THREADS");
+    ASSERT_EQ(r.code, 0) << r.output;
+  }
+  const std::string summary = file_text(dir_ / "run0" / "summary.json");
+  EXPECT_NE(summary.find("\"openblas\": 1"), std::string::npos) << summary;
+  for (size_t k = 1; k < settings.size(); ++k)
+    for (const char* frame : {"frames/run_00001.vtu", "frames/run_00002.vtu"})
+      EXPECT_EQ(file_text(dir_ / ("run" + std::to_string(k)) / frame), file_text(dir_ / "run0" / frame))
+          << frame << " of setting " << k;
+}
+
+// A state the model cannot represent is a named numerical outcome (exit 1) with
+// a complete record, not NaN or a runaway: without friction or parallel contact,
+// a strong pull along the yarns slides crossing (1, 1) past (2, 1) in one step.
+TEST_F(Cli, SlidingCoordinatesThatCrossEndInOutcomeInvalidState) {
+  const fs::path scene = write_scene(
+      "[cloth]\nwarps = 5\nwefts = 5\n[pose]\nkind = \"upright\"\n[[handles]]\nnode = [0, 0]\n"
+      "stiffness_N_per_m = 10000.0\n[[handles]]\nnode = [4, 0]\nstiffness_N_per_m = 10000.0\n"
+      "[gravity]\nacceleration_m_per_s2 = [0.0, 0.0, -10000.0]\n[time]\nduration_s = 0.02\n"
+      "[terms]\nfriction = false\nparallel_contact = false\n");
+  const fs::path out = dir_ / "out";
+  const Result r = run_cli("run '" + scene.string() + "' --quiet --out '" + out.string() + "'", dir_);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("'invalid_state'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("on warp 1 between crossings (1, 1) and (2, 1)"), std::string::npos) << r.output;
+  EXPECT_NE(file_text(out / "summary.json").find("\"invalid_state\""), std::string::npos);
+  EXPECT_TRUE(fs::exists(out / "metrics.csv"));
+}
+
 // Bad inputs of every kind: each is exit 2 with a located message (the scene,
 // mesh or parameter file with its line, or the option) and writes nothing.
 TEST_F(Cli, EveryBadInputIsALocatedExit2) {
@@ -152,6 +203,11 @@ TEST_F(Cli, EveryBadInputIsALocatedExit2) {
       {"", "[time]\ndt_s = 1e-10\n", "", "", "bad.toml:2"},
       {"", "[time]\nduration_s = nan\n", "", "", "bad.toml:2"},
       {"", "[contact]\nlock_exponent = 0\n", "", "", "bad.toml:2"},
+      {"", "[cloth]\nradius_m = 0.0008\n", "", "", "bad.toml:2"},
+      {"--model fem --fem-params ''", "", "", "", "'--fem-params'"},
+      {"--model fem --fem-params '" + (dir_ / "missing.toml").string() + "'", "", "", "", "'--fem-params'"},
+      {"--model fem --fem-params '" + (dir_ / "p.toml").string() + "'", "", "p.toml", "shear_N_per_m = nan\n",
+       "p.toml:1"},
       {"", "[cloth]\nwarps = 2\n", "", "", "bad.toml:2"},
       {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu", "", "m.vtu:1"},
       {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",

@@ -61,13 +61,20 @@ TEST(ModelComparison, YarnAndFemRunsOfOneScenePairFrameByFrame) {
     rows.push_back(row);
   }
   ASSERT_EQ(static_cast<int>(rows.size()), frames) << "one row per output frame";
-  const double side = 16e-3;  // the 17×17 cloth at L = 1 mm
+  // The scale both models must agree on: early on the cloth hangs only by its
+  // two top corners and falls, ½gt² (1.96 mm at 20 ms). A model that stood
+  // still, or fell at a different rate, would be about that far from the other;
+  // the two must agree to better than half of it in RMS and within it at the
+  // worst crossing. (Measured: RMS 0.13 and 0.75 mm, max 0.30 and 1.17 mm at
+  // 10 and 20 ms, against falls of 0.49 and 1.96 mm.)
   for (size_t k = 0; k < rows.size(); ++k) {
     ASSERT_EQ(rows[k].size(), 4u);
     EXPECT_NEAR(rows[k][0], 0.01 * k, 1e-12);
     for (double x : rows[k]) EXPECT_TRUE(std::isfinite(x)) << "row " << k;
     EXPECT_LE(rows[k][1], rows[k][2]) << "RMS above max at row " << k;
-    EXPECT_LT(rows[k][2], side) << "the two models drifted a cloth size apart in 20 ms at row " << k;
+    const double fall = 0.5 * 9.8 * rows[k][0] * rows[k][0];
+    EXPECT_LE(rows[k][1], 0.5 * fall) << "RMS distance at t = " << rows[k][0] << " against a fall of " << fall;
+    EXPECT_LE(rows[k][2], fall) << "max distance at t = " << rows[k][0] << " against a fall of " << fall;
     EXPECT_GT(rows[k][3], 0.0);
   }
   // Both models start from the same pose: each crossing lies on the FEM

@@ -258,6 +258,34 @@ TEST_P(IntegratorSuite, NanInTheStateIsReportedNotCrashed) {
   EXPECT_TRUE(r.outcome == Outcome::nan || r.outcome == Outcome::diverged) << to_string(r.outcome);
 }
 
+// A chain that cannot represent states where mass 2 has moved more than 5 cm
+// (as the yarn model cannot represent sliding coordinates that meet).
+class FencedChain : public test::SpringChain {
+ public:
+  FencedChain() : SpringChain(4, 1.0, 1.0, 1.0, -1.0) {
+    Vec q0 = initial_q();
+    q0[2] += 0.3;
+    set_initial(q0, initial_v());
+    fence_ = q0[2];
+  }
+  std::string invalid_state(const Vec& q) const override {
+    return std::abs(q[2] - fence_) > 0.05 ? "mass 2 left its fence" : "";
+  }
+
+ private:
+  double fence_ = 0.0;
+};
+
+TEST_P(IntegratorSuite, StateTheModelCannotRepresentIsANamedOutcome) {
+  FencedChain chain;
+  IntegratorOptions opt;
+  opt.dt = 0.01;
+  auto r = run(GetParam(), chain, 2.0, opt);
+  EXPECT_EQ(r.result.outcome, Outcome::invalid_state) << to_string(r.result.outcome) << ": " << r.result.message;
+  EXPECT_EQ(r.result.message, "mass 2 left its fence");
+  EXPECT_GT(r.stats.steps, 0);
+}
+
 TEST_P(IntegratorSuite, StateDependentMassConservesEnergyOrIsNotOffered) {
   const Traits& tr = traits(GetParam());
   test::VariableMassOscillator osc(1.0, 2.0, 1.0, 0.8, 0.0);

@@ -175,7 +175,9 @@ TEST(SceneErrors, WhatReadsFileLineKeyValueExpected) {
     parse_scene("[cloth]\nspacing_m = 0.001\nradius_m = -0.5\n", "bad.toml");
     FAIL() << "no error";
   } catch (const SceneError& e) {
-    EXPECT_STREQ(e.what(), "bad.toml:3: key 'cloth.radius_m': got -0.5, expected a number > 0 and < cloth.spacing_m (= 0.001)");
+    EXPECT_STREQ(e.what(),
+                 "bad.toml:3: key 'cloth.radius_m': got -0.5, expected a number > 0 and < cloth.spacing_m/√2 "
+                 "(= 0.0007071067811865475), so that the shear lock angle 2·arcsin(R/L) stays below π/2");
     EXPECT_EQ(e.value, "-0.5");
   }
 }
@@ -214,9 +216,11 @@ TEST(SceneErrors, WrongTypes) {
 
 TEST(SceneErrors, RadiusMustBePositiveAndBelowSpacing) {
   expect_error("[cloth]\nradius_m = -0.0005\n", 2, "cloth.radius_m", "a number > 0");
-  expect_error("[cloth]\nspacing_m = 0.001\nradius_m = 0.001\n", 3, "cloth.radius_m", "< cloth.spacing_m (= 0.001)");
-  // Spacing below the default radius: the spacing is at fault.
-  expect_error("[cloth]\nspacing_m = 0.0004\n", 2, "cloth.spacing_m", "> cloth.radius_m (= 0.0005)");
+  expect_error("[cloth]\nspacing_m = 0.001\nradius_m = 0.001\n", 3, "cloth.radius_m", "< cloth.spacing_m/√2 (= 0.0007071067811865475)");
+  // R/L = 0.75: the lock angle 2 arcsin(R/L) would pass π/2.
+  expect_error("[cloth]\nspacing_m = 0.001\nradius_m = 0.00075\n", 3, "cloth.radius_m", "lock angle");
+  // Spacing below √2 × the default radius: the spacing is at fault.
+  expect_error("[cloth]\nspacing_m = 0.0006\n", 2, "cloth.spacing_m", "> √2·cloth.radius_m (= 0.0007071067811865476)");
 }
 
 TEST(SceneErrors, YarnTypeNamesMustExistAndBeUsed) {

@@ -1,8 +1,15 @@
 // The one generic finite-difference checker (docs/design.md §10):
-// central differences of a term's element at given local states. Checks
+// central differences of a term's element at given local states and at seeded
+// random perturbations of them. Checks
 //   force at v = 0 against −∂energy/∂q (conservative terms),
 //   ∂f/∂q  against differences of force in q,
-//   ∂f/∂v  against differences of force in v (terms with velocity Jacobians).
+//   ∂f/∂v  against differences of force in v (terms with velocity Jacobians),
+//   mass   (terms that provide one): symmetric, and the velocity-dependent force
+//          f(q, v) − f(q, 0) equal to the inertial force ∂T/∂q − Ṁq̇ built from
+//          differences of M (docs/models.md §3.1.2),
+// with steps relative to the state's extent. A check of nothing fails: the force
+// and ∂f/∂q (or, for a term with a mass, the mass), and ∂f/∂v when the term has
+// one, must each be non-zero at some state.
 // The term must already be prepared (auxiliary quantities frozen).
 #pragma once
 #include <functional>
@@ -19,9 +26,18 @@ struct LocalState {
 };
 
 struct FdOptions {
-  double step = 1e-7;   // absolute perturbation of a local coordinate
-  double rtol = 1e-5;   // relative error allowed (Frobenius norms)
-  double floor = 1e-10; // absolute scale below which quantities count as zero
+  // Step of coordinate j: rel_step × the extent (max − min) of the state's q
+  // (of v for velocity steps; max(|x|, 1) when all entries are equal).
+  double rel_step = 1e-6;
+  double rtol = 1e-5;    // relative error allowed (Frobenius norms)
+  double floor = 1e-10;  // absolute scale below which quantities count as zero
+  // Seeded random states added per given state: q (and v when not all zero)
+  // moved by up to `jitter` × their extent.
+  int random_states = 3;
+  double jitter = 1e-3;
+  unsigned seed = 1;
+  // The force does not depend on q (gravity): ∂f/∂q must vanish instead.
+  bool constant_force = false;
 };
 
 struct FdReport {
@@ -29,6 +45,7 @@ struct FdReport {
   double force_error = 0.0;  // worst relative errors over the states
   double dfdq_error = 0.0;
   double dfdv_error = 0.0;
+  double mass_error = 0.0;
   std::string detail;        // what failed, where
 };
 
@@ -38,7 +55,9 @@ FdReport check_element(const Term& term, int element, const std::vector<LocalSta
 // Parameter derivative (Term::parameter_derivative) of the term's k-th parameter
 // against central differences of the force in p, with a relative step:
 // `make(p)` builds the term (element `element` prepared) at parameter value p.
-// The derivative must not be zero at every state (a check of nothing).
+// Terms that provide mass also have ∂M/∂p (Term::mass_parameter_derivative)
+// checked against differences of the mass block. The derivative must not be
+// zero at every state (a check of nothing).
 FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(double)>& make, double p, int k,
                                     int element, const std::vector<LocalState>& states, const FdOptions& opt = {});
 

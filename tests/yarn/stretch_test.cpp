@@ -50,7 +50,6 @@ TEST(StretchTerm, FiniteDifferencesAtMillimetreScale) {
       {{0.0, 0.0, 0.0, 0.9e-3, 0.3e-3, 0.1e-3, 2e-3, 3.1e-3}, zero},
   };
   test::FdOptions opt;
-  opt.step = 1e-10;
   opt.floor = 1e-14;
   const auto r = test::check_element(t, 0, states, opt);
   EXPECT_TRUE(r.ok) << r.detail;

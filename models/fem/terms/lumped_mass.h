@@ -8,7 +8,7 @@
 
 namespace wl {
 
-class LumpedMassTerm : public StencilTerm<9> {
+class LumpedMassTerm : public ProportionalParameterTerm<9> {
  public:
   std::string name() const override { return "fem-mass"; }
   bool provides_mass() const override { return true; }

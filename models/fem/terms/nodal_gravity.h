@@ -9,7 +9,7 @@
 
 namespace wl {
 
-class NodalGravityTerm : public StencilTerm<3> {
+class NodalGravityTerm : public ProportionalParameterTerm<3> {
  public:
   explicit NodalGravityTerm(const Vec3& g_m_per_s2) : g_(g_m_per_s2) {}
   std::string name() const override { return "fem-gravity"; }

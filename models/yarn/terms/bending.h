@@ -20,7 +20,7 @@
 
 namespace wl {
 
-class BendingTerm : public StencilTerm<11> {
+class BendingTerm : public ProportionalParameterTerm<11> {
  public:
   using Local = Eigen::Matrix<double, 11, 1>;
   using LocalMatrix = Eigen::Matrix<double, 11, 11>;

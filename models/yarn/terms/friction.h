@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/core/term.h"
+#include "models/scene/parameter_keys.h"
 
 namespace wl {
 
@@ -29,6 +30,8 @@ class FrictionTerm : public StencilTerm<1> {
   double anchor(int e) const { return anchor_[e]; }
   double tangential_force(int e) const { return Fu_[e]; }  // frozen F_u
   double contact_force(int e) const { return Fn_[e]; }     // frozen F_n
+  // ∂F/∂μ at frozen F_u, F_n and anchor (docs/models.md §9.1).
+  std::vector<std::string> parameter_keys() const override { return {kFrictionCoefficientKey}; }
 
  protected:
   // normal_force: per-node F_n [N] owned by the model (null: F_n = 0); mu

@@ -36,6 +36,11 @@ void CirioFrictionTerm::evaluate(int e, const double* q, const double* v, const 
   if (out.dfdv) out.dfdv[0] = -df_;
 }
 
+// ∂F/∂μ = −sign(u − ū) F_n while slipping, 0 while sticking.
+void CirioFrictionTerm::parameter_derivative(int e, int, const double*, const double*, double* dfdp) const {
+  dfdp[0] += -slip_direction(e) * Fn_[e];
+}
+
 std::vector<double> CirioFrictionTerm::sliding_state() const {
   std::vector<double> s(num_elements());
   for (int e = 0; e < num_elements(); ++e) s[e] = slip_direction(e) != 0 ? 1.0 : 0.0;

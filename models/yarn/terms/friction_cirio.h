@@ -36,6 +36,7 @@ class CirioFrictionTerm : public FrictionTerm {
 
   void accept_step(const EvalContext& ctx, double h) override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+  void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
   // 0 = stick, 1 = slip (the mode held for the current step).
   std::vector<double> sliding_state() const override;
   int slip_direction(int e) const { return e < static_cast<int>(mode_.size()) ? mode_[e] : 0; }  // 0, ±1

@@ -12,6 +12,7 @@ namespace wl {
 //   ∂F/∂δu  = −½(k_f − p(1−K_δ²)μF_n) K₂ − ½(k_f + p(1−K_δ²)μF_n)
 //   ∂F/∂F_u = +½ A p (1−K₂²) sign(F_u)
 //   ∂F/∂F_n = ½ K_δ μ K₂ − ½ A p (1−K₂²) μ − ½ K_δ μ
+//   ∂F/∂μ   = ½ K_δ F_n K₂ − ½ A p (1−K₂²) F_n − ½ K_δ F_n   (μ and F_n enter only as μF_n)
 GongFrictionResponse gong_friction_law(double delta_u, double F_u, double F_n, double mu, double kf, double p) {
   const double Kd = std::tanh(p * delta_u);
   const double K2 = std::tanh(p * (mu * F_n - std::abs(F_u)));
@@ -24,6 +25,7 @@ GongFrictionResponse gong_friction_law(double delta_u, double F_u, double F_n, d
   r.d_delta = -0.5 * (kf - dKd * mu * F_n) * K2 - 0.5 * (kf + dKd * mu * F_n);
   r.d_Fu = 0.5 * A * dK2 * sgn;
   r.d_Fn = 0.5 * Kd * mu * K2 - 0.5 * A * dK2 * mu - 0.5 * Kd * mu;
+  r.d_mu = 0.5 * Kd * F_n * K2 - 0.5 * A * dK2 * F_n - 0.5 * Kd * F_n;
   return r;
 }
 
@@ -49,6 +51,10 @@ void GongFrictionTerm::evaluate(int e, const double* q, const double* v, const E
   out.force[0] = r.force - df_ * v[0];
   if (out.dfdq) out.dfdq[0] = r.d_delta;
   if (out.dfdv) out.dfdv[0] = -df_;
+}
+
+void GongFrictionTerm::parameter_derivative(int e, int, const double* q, const double*, double* dfdp) const {
+  dfdp[0] += gong_friction_law(q[0] - anchor_[e], Fu_[e], Fn_[e], mu_, kf_, p_).d_mu;
 }
 
 std::vector<double> GongFrictionTerm::sliding_state() const {

@@ -27,6 +27,7 @@ struct GongFrictionResponse {
   double d_delta = 0.0;  // ∂/∂δu
   double d_Fu = 0.0;     // ∂/∂F_u
   double d_Fn = 0.0;     // ∂/∂F_n
+  double d_mu = 0.0;     // ∂/∂μ
 };
 GongFrictionResponse gong_friction_law(double delta_u, double F_u, double F_n, double mu, double kf, double p);
 
@@ -39,6 +40,7 @@ class GongFrictionTerm : public FrictionTerm {
 
   void accept_step(const EvalContext& ctx, double h) override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+  void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
   // sigmoid(10⁴(|F_u| − μF_n)) at the last prepared inputs.
   std::vector<double> sliding_state() const override;
 

@@ -11,7 +11,7 @@
 
 namespace wl {
 
-class GravityTerm : public StencilTerm<8> {
+class GravityTerm : public ProportionalParameterTerm<8> {
  public:
   explicit GravityTerm(const Vec3& g_m_per_s2);
   // One segment; rho is the linear density in kg/m (> 0).

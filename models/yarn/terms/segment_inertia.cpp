@@ -67,6 +67,15 @@ void SegmentInertiaTerm::mass_block(const double* q, double rho, double* m) {
   out = rho / 6.0 * (D * pattern_a0() + pattern_b(d, d.squaredNorm() / D));
 }
 
+// B is linear in (a, s), so δM = ρ/6 [δD A0 + B(δd, δσ)] with δσ = 2d·δd/D − ‖d‖²δD/D².
+void SegmentInertiaTerm::mass_directional_derivative(int e, const double* q, const double* dq, double* dm) const {
+  const Vec3 d = Eigen::Map<const Vec3>(q + 3) - Eigen::Map<const Vec3>(q);
+  const Vec3 dd = Eigen::Map<const Vec3>(dq + 3) - Eigen::Map<const Vec3>(dq);
+  const double D = q[7] - q[6], dD = dq[7] - dq[6];
+  const double ds = 2.0 * d.dot(dd) / D - d.squaredNorm() * dD / (D * D);
+  Eigen::Map<Mat8>(dm) += rho_[e] / 6.0 * (dD * pattern_a0() + pattern_b(dd, ds));
+}
+
 double SegmentInertiaTerm::kinetic_energy(const double* q, const double* v, double rho) {
   Eigen::Map<const Vec3> x0(q), x1(q + 3), xd0(v), xd1(v + 3);
   const Vec3 d = x1 - x0;

@@ -13,7 +13,7 @@
 
 namespace wl {
 
-class SegmentInertiaTerm : public StencilTerm<8> {
+class SegmentInertiaTerm : public ProportionalParameterTerm<8> {
  public:
   // One segment; rho is the linear density in kg/m (> 0).
   void add(const std::array<int, 8>& stencil, double rho);
@@ -31,6 +31,8 @@ class SegmentInertiaTerm : public StencilTerm<8> {
   static double kinetic_energy(const double* q, const double* v, double rho);
   // The 8×8 mass block M(q) of one segment (column-major into m).
   static void mass_block(const double* q, double rho, double* m);
+  // δM = ρ/6 [δD A0 + B(δd, δσ)], σ = ‖d‖²/D, along dq (docs/models.md §9.2).
+  void mass_directional_derivative(int e, const double* q, const double* dq, double* dm) const override;
 
  private:
   std::vector<double> rho_;

@@ -11,7 +11,7 @@
 
 namespace wl {
 
-class CirioShearTerm : public StencilTerm<9> {
+class CirioShearTerm : public ProportionalParameterTerm<9> {
  public:
   // kx_L = k_x L (N·m per rad²), the stiffness of this quadrant.
   void add(const std::array<int, 9>& stencil, double kx_L);

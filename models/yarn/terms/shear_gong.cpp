@@ -22,7 +22,8 @@ GongShearTerm::GongShearTerm(const std::vector<double>* normal_force, double L, 
     : normal_force_(normal_force), L_(L), R_(R), c_(c), sigma_(sigma) {
   std::ostringstream bad;
   if (!(L > 0.0)) bad << "L = " << L << " (expected > 0)";
-  else if (!(R > 0.0 && R < L)) bad << "R = " << R << " (expected 0 < R < L = " << L << ")";
+  else if (!(R > 0.0 && R * std::sqrt(2.0) < L))  // φ_l = 2 arcsin(R/L) < π/2
+    bad << "R = " << R << " (expected 0 < R < L/√2 = " << L / std::sqrt(2.0) << ", lock angle below π/2)";
   else if (!(c > 0.0)) bad << "c = " << c << " (expected > 0)";
   else if (!(sigma > 0.0)) bad << "sigma = " << sigma << " (expected > 0)";
   if (!bad.str().empty()) throw std::invalid_argument("GongShearTerm: " + bad.str());

@@ -23,7 +23,7 @@
 
 namespace wl {
 
-class GongShearTerm : public StencilTerm<9> {
+class GongShearTerm : public ProportionalParameterTerm<9> {
  public:
   // normal_force: per-node contact normal force F_n (N), owned by the model
   // (may be null: F_n = 0). L segment rest length (m), R yarn radius (m),

@@ -13,7 +13,7 @@
 
 namespace wl {
 
-class StretchTerm : public StencilTerm<8> {
+class StretchTerm : public ProportionalParameterTerm<8> {
  public:
   using Local = Eigen::Matrix<double, 8, 1>;
   using LocalMatrix = Eigen::Matrix<double, 8, 8>;

@@ -1,0 +1,70 @@
+#include "calibration/optimum_statistics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/SVD>
+#include <ceres/ceres.h>
+
+namespace wl {
+
+OptimumStatistics optimum_statistics(ceres::Problem& problem, double* theta, int n) {
+  OptimumStatistics s;
+  std::vector<double> residuals;
+  ceres::CRSMatrix crs;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), &s.cost, &residuals, nullptr, &crs);
+  s.jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int r = 0; r < crs.num_rows; ++r)
+    for (int i = crs.rows[r]; i < crs.rows[r + 1]; ++i) s.jacobian(r, crs.cols[i]) = crs.values[i];
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.jacobian, Eigen::ComputeThinV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  for (int i = 0; i < sv.size(); ++i) {
+    s.singular_values.push_back(sv[i]);
+    if (sv[i] > 1e-7 * sv[0]) continue;
+    int held = 0;
+    svd.matrixV().col(i).cwiseAbs().maxCoeff(&held);
+    if (std::find(s.unidentifiable.begin(), s.unidentifiable.end(), held) == s.unidentifiable.end())
+      s.unidentifiable.push_back(held);
+  }
+
+  const int m = crs.num_rows;
+  if (m <= n) {
+    s.covariance_message = "fewer residuals than parameters";
+    return s;
+  }
+  if (static_cast<int>(s.unidentifiable.size()) == n) {
+    s.covariance_message = "no parameter is identifiable: the residuals do not depend on them";
+    return s;
+  }
+  // Hold the unidentifiable parameters: Ceres then computes the covariance in
+  // the remaining directions (zero rows and columns for the held ones).
+  if (!s.unidentifiable.empty()) problem.SetManifold(theta, new ceres::SubsetManifold(n, s.unidentifiable));
+  ceres::Covariance::Options copt;
+  copt.algorithm_type = ceres::DENSE_SVD;
+  ceres::Covariance cov(copt);
+  const std::vector<std::pair<const double*, const double*>> blocks{{theta, theta}};
+  const bool ok = cov.Compute(blocks, &problem);
+  if (ok) {
+    s.covariance.resize(n, n);
+    cov.GetCovarianceBlock(theta, theta, s.covariance.data());  // row-major; the matrix is symmetric
+    s.covariance *= 2.0 * s.cost / (m - n + static_cast<int>(s.unidentifiable.size()));
+  }
+  if (!s.unidentifiable.empty()) problem.SetManifold(theta, nullptr);
+  if (!ok) s.covariance_message = "the Jacobian is rank deficient: some parameter is not identifiable (singular values)";
+  else if (!s.unidentifiable.empty()) s.covariance_message = "some parameters are not identifiable (held for the covariance)";
+  return s;
+}
+
+std::vector<std::vector<double>> OptimumStatistics::correlation() const {
+  const int n = static_cast<int>(covariance.rows());
+  std::vector<std::vector<double>> c(n, std::vector<double>(n, 0.0));
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      const double d = std::sqrt(covariance(a, a) * covariance(b, b));
+      c[a][b] = d > 0 ? covariance(a, b) / d : (a == b ? 1.0 : 0.0);
+    }
+  return c;
+}
+
+}  // namespace wl

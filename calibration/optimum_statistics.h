@@ -1,0 +1,31 @@
+// What a least-squares optimum says about its parameters (docs/calibration.md §4.3):
+// the Jacobian in θ, its singular values and ceres::Covariance (DENSE_SVD) of θ
+// scaled by the residual variance σ² = 2·cost/(m − n). A parameter the data
+// cannot tell (it dominates a singular vector whose singular value is below
+// 1e-7 of the largest) is reported as unidentifiable and held while the
+// covariance of the others is computed. Shared by the static calibration and
+// the trajectory fit.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <ceres/problem.h>
+
+namespace wl {
+
+struct OptimumStatistics {
+  double cost = 0.0;
+  Eigen::MatrixXd jacobian;              // m × n at θ
+  std::vector<double> singular_values;
+  std::vector<int> unidentifiable;       // indices into θ
+  Eigen::MatrixXd covariance;            // n × n of θ (zero rows for unidentifiable ones); empty when unavailable
+  std::string covariance_message;        // why it is unavailable
+  // Correlation matrix from `covariance` (empty when it is empty).
+  std::vector<std::vector<double>> correlation() const;
+};
+
+// `theta` is the problem's one parameter block, of size n.
+OptimumStatistics optimum_statistics(ceres::Problem& problem, double* theta, int n);
+
+}  // namespace wl

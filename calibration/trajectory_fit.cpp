@@ -1,0 +1,342 @@
+#include "calibration/trajectory_fit.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <ctime>
+#include <limits>
+#include <memory>
+
+#include <Eigen/Sparse>
+#include <ceres/ceres.h>
+
+#include "calibration/optimum_statistics.h"
+#include "calibration/scene_parameters.h"
+#include "integrators/integrator.h"
+#include "models/fem/fem_model.h"
+#include "models/yarn/yarn_model.h"
+
+namespace wl {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+using Clock = std::chrono::steady_clock;
+
+std::unique_ptr<Model> build_model(const Scene& scene, const std::string& name) {
+  if (name == "yarn") return std::make_unique<YarnModel>(scene);
+  if (name == "fem") return std::make_unique<FemModel>(scene);
+  throw TrajectoryFitError("model '" + name + "': expected 'yarn' or 'fem'");
+}
+
+// H_k per frame (3·points × DoFs) and which points it sees: a point the model
+// cannot observe (a crossing outside the continuum's mesh) has zero rows and is
+// not compared.
+struct Observation {
+  std::vector<SpMat> H;
+  std::vector<std::vector<char>> seen;  // per frame, per point
+  int min_seen = 0;                     // fewest points seen in a frame
+};
+
+// Every point seen in every frame, point k at the DoFs dof_of(k) … +2.
+Observation direct(int n, const Model& model, size_t frames, const std::function<int(int)>& dof_of) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) t.emplace_back(3 * k + c, dof_of(k) + c, 1.0);
+  SpMat h(3 * n, model.num_dofs());
+  h.setFromTriplets(t.begin(), t.end());
+  return {std::vector<SpMat>(frames, h), std::vector<std::vector<char>>(frames, std::vector<char>(n, 1)), n};
+}
+
+Observation observe(const Model& model, const std::string& name, const std::vector<TargetFrame>& frames) {
+  const int n = static_cast<int>(frames.front().points.rows());
+  auto mismatch = [&](const std::string& what, int count) {
+    return TrajectoryFitError("the target has " + std::to_string(n) + " points per frame, the scene's " + name +
+                              " model " + std::to_string(count) + " " + what + ": not a run of this scene");
+  };
+  if (name == "yarn") {
+    const auto& yarn = dynamic_cast<const YarnModel&>(model);
+    if (yarn.grid().num_nodes() != n) throw mismatch("nodes", yarn.grid().num_nodes());
+    return direct(n, model, frames.size(), [&](int k) { return yarn.grid().dofs(k).x; });
+  }
+  const auto& fem = dynamic_cast<const FemModel&>(model);
+  if (frames.front().uv.empty()) {  // no material coordinates: a continuum run, observed at its vertices
+    if (fem.mesh().num_vertices() != n) throw mismatch("vertices", fem.mesh().num_vertices());
+    return direct(n, model, frames.size(), [](int k) { return 3 * k; });
+  }
+  // A yarn-level run: the continuum interpolated at each crossing's material point.
+  Observation o;
+  o.min_seen = n;
+  for (const TargetFrame& f : frames) {
+    std::vector<Eigen::Triplet<double>> t;
+    std::vector<char> seen(n, 0);
+    for (int k = 0; k < n; ++k) {
+      std::array<int, 3> v;
+      Vec3 w;
+      if (!fem.surface_weights(f.uv[k], &v, &w)) continue;
+      seen[k] = 1;
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) t.emplace_back(3 * k + c, 3 * v[a] + c, w[a]);
+    }
+    o.min_seen = std::min(o.min_seen, static_cast<int>(std::count(seen.begin(), seen.end(), 1)));
+    SpMat h(3 * n, model.num_dofs());
+    h.setFromTriplets(t.begin(), t.end());
+    o.H.push_back(std::move(h));
+    o.seen.push_back(std::move(seen));
+  }
+  return o;
+}
+
+// One simulation at parameter values p: per frame the observed positions and
+// their derivatives in p.
+struct Simulation {
+  bool ok = false;
+  std::string message;
+  std::vector<Vec> y;
+  std::vector<Eigen::MatrixXd> dy;
+};
+
+class Simulator {
+ public:
+  Simulator(const Scene& scene, const std::vector<TargetFrame>& frames, const TrajectoryFitOptions& opt)
+      : scene_(scene), frames_(frames), opt_(opt) {
+    integrator_ = opt.integrator.empty() ? scene.integrator : opt.integrator;
+    if (!make_integrator(integrator_)->offers_sensitivities())
+      throw TrajectoryFitError("integrator '" + integrator_ +
+                               "' offers no parameter sensitivities; use be-linear or be-newton");
+    const std::unique_ptr<Model> model = build_model(scene, opt.model);
+    const std::vector<std::string> keys = model->parameter_keys();
+    for (const std::string& key : opt.free) {
+      scene_parameter(scene, key);  // throws ParameterKeyError for an unknown key
+      if (std::find(keys.begin(), keys.end(), key) == keys.end())
+        throw TrajectoryFitError("parameter '" + key + "': the " + opt.model +
+                                 " model of this scene does not depend on it (or it is zero)");
+    }
+    obs_ = observe(*model, opt.model, frames);
+  }
+
+  Simulation run(const std::vector<double>& p) {
+    ++count_;
+    Scene s = scene_;
+    for (size_t k = 0; k < p.size(); ++k) set_scene_parameter(s, opt_.free[k], p[k]);
+    Simulation sim;
+    try {
+      const std::unique_ptr<Model> model = build_model(s, opt_.model);
+      const std::unique_ptr<Integrator> in = make_integrator(integrator_);
+      in->track_sensitivities(opt_.free);
+      IntegratorOptions io;
+      io.dt = s.dt_s;
+      in->initialize(*model, 0.0, model->initial_q(), model->initial_v(), io);
+      for (size_t k = 0; k < frames_.size(); ++k) {
+        const StepResult r = in->advance_to(frames_[k].time);
+        if (r.outcome != Outcome::ok) {
+          sim.message = std::string(to_string(r.outcome)) + " at t = " + std::to_string(in->t()) + " s: " + r.message;
+          return sim;
+        }
+        sim.y.push_back(obs_.H[k] * in->q());
+        sim.dy.push_back(obs_.H[k] * in->dq_dp());
+      }
+    } catch (const std::invalid_argument& e) {  // parameter values the model rejects
+      sim.message = e.what();
+      return sim;
+    }
+    sim.ok = true;
+    return sim;
+  }
+
+  const Observation& observation() const { return obs_; }
+  int count() const { return count_; }
+
+ private:
+  const Scene& scene_;
+  const std::vector<TargetFrame>& frames_;
+  const TrajectoryFitOptions& opt_;
+  std::string integrator_;
+  Observation obs_;
+  int count_ = 0;
+};
+
+// RMS distance per frame over the points seen in it.
+std::vector<double> frame_rms(const Simulation& sim, const std::vector<TargetFrame>& frames, const Observation& o) {
+  std::vector<double> rms;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    double sum = 0;
+    int seen = 0;
+    for (Eigen::Index i = 0; i < frames[k].points.rows(); ++i) {
+      if (!o.seen[k][i]) continue;
+      sum += (sim.y[k].segment<3>(3 * i) - frames[k].points.row(i).transpose()).squaredNorm();
+      ++seen;
+    }
+    rms.push_back(std::sqrt(sum / std::max(seen, 1)));
+  }
+  return rms;
+}
+
+class TrajectoryCost final : public ceres::CostFunction {
+ public:
+  TrajectoryCost(Simulator& sim, const std::vector<TargetFrame>& frames, Simulation* last, std::vector<double>* last_p)
+      : sim_(sim), frames_(frames), last_(last), last_p_(last_p) {
+    set_num_residuals(static_cast<int>(3 * frames.front().points.rows() * frames.size()));
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(last_p->size()));
+  }
+
+  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
+    const int n = parameter_block_sizes()[0];
+    std::vector<double> p(n);
+    for (int k = 0; k < n; ++k) p[k] = std::exp(x[0][k]);
+    if (p != *last_p_ || !last_->ok) {  // Ceres asks for the Jacobian at the point it just evaluated
+      *last_ = sim_.run(p);
+      *last_p_ = p;
+    }
+    if (!last_->ok) return false;  // Ceres retries with a shorter step
+    const Observation& o = sim_.observation();
+    int row = 0;
+    for (size_t f = 0; f < frames_.size(); ++f) {
+      const Eigen::Index points = frames_[f].points.rows();
+      for (Eigen::Index i = 0; i < points; ++i) {
+        const bool seen = o.seen[f][i];
+        for (int c = 0; c < 3; ++c, ++row) {
+          residuals[row] = seen ? last_->y[f][3 * i + c] - frames_[f].points(i, c) : 0.0;
+          if (jacobians && jacobians[0])
+            for (int k = 0; k < n; ++k) jacobians[0][row * n + k] = seen ? last_->dy[f](3 * i + c, k) * p[k] : 0.0;
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  Simulator& sim_;
+  const std::vector<TargetFrame>& frames_;
+  Simulation* last_;
+  std::vector<double>* last_p_;
+};
+
+class Progress final : public ceres::IterationCallback {
+ public:
+  Progress(const Simulator& sim, int residuals, bool print, std::vector<double>* history)
+      : sim_(sim), residuals_(residuals), print_(print), history_(history), t0_(Clock::now()) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    history_->push_back(s.cost);
+    if (print_)
+      std::fprintf(stderr, "  fit iteration %d: cost %.6g (RMS %.4g mm), %d simulations, %.0f s\n", s.iteration, s.cost,
+                   1e3 * std::sqrt(2.0 * s.cost / residuals_ * 3.0), sim_.count(),
+                   std::chrono::duration<double>(Clock::now() - t0_).count());
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const Simulator& sim_;
+  int residuals_;
+  bool print_;
+  std::vector<double>* history_;
+  Clock::time_point t0_;
+};
+
+}  // namespace
+
+TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetFrame>& target,
+                                   const TrajectoryFitOptions& opt) {
+  const auto wall0 = Clock::now();
+  const std::clock_t cpu0 = std::clock();
+  if (opt.free.empty()) throw TrajectoryFitError("no parameter to fit: name at least one key with --free");
+  if (!(opt.bound_factor > 1.0)) throw TrajectoryFitError("bound factor must be > 1");
+  std::vector<TargetFrame> frames;
+  for (const TargetFrame& f : target)
+    if (f.time > 0.0) frames.push_back(f);
+  if (frames.empty()) throw TrajectoryFitError("the target has no frame after t = 0");
+  if (frames.back().time > scene.duration_s * (1 + 1e-12) + 1e-12)
+    throw TrajectoryFitError("the target's frames reach t = " + std::to_string(frames.back().time) +
+                             " s, beyond the scene's duration " + std::to_string(scene.duration_s) + " s");
+
+  Simulator sim(scene, frames, opt);
+  const int n = static_cast<int>(opt.free.size());
+  std::vector<double> theta(n), lower(n), upper(n), p0(n);
+  for (int k = 0; k < n; ++k) {
+    const auto it = opt.start.find(opt.free[k]);
+    p0[k] = it != opt.start.end() ? it->second : scene_parameter(scene, opt.free[k]);
+    if (!(p0[k] > 0.0) || !std::isfinite(p0[k]))
+      throw TrajectoryFitError("parameter '" + opt.free[k] + "' starts at " + std::to_string(p0[k]) +
+                               ": a fitted parameter must start finite and > 0 (it is fitted as log p)");
+    theta[k] = std::log(p0[k]);
+    lower[k] = theta[k] - std::log(opt.bound_factor);
+    upper[k] = theta[k] + std::log(opt.bound_factor);
+  }
+  for (const auto& [key, value] : opt.start)
+    if (std::find(opt.free.begin(), opt.free.end(), key) == opt.free.end())
+      throw TrajectoryFitError("--start names '" + key + "', which is not among the fitted keys (--free)");
+
+  Simulation last;
+  std::vector<double> last_p(n, -1.0);
+  TrajectoryFitResult result;
+  result.observed_points = sim.observation().min_seen;
+  for (const TargetFrame& f : frames) result.times.push_back(f.time);
+  // The start's per-frame distance (also Ceres's first evaluation, from the cache).
+  last = sim.run(p0);
+  last_p = p0;
+  if (!last.ok) {
+    result.message = "the start does not simulate: " + last.message;
+    return result;
+  }
+  result.start_rms = frame_rms(last, frames, sim.observation());
+  result.start_positions = last.y;
+
+  ceres::Problem problem;
+  auto* cost = new TrajectoryCost(sim, frames, &last, &last_p);
+  problem.AddResidualBlock(cost, nullptr, theta.data());
+  for (int k = 0; k < n; ++k) {
+    problem.SetParameterLowerBound(theta.data(), k, lower[k]);
+    problem.SetParameterUpperBound(theta.data(), k, upper[k]);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = opt.max_iterations;
+  so.function_tolerance = 1e-12;
+  so.gradient_tolerance = 1e-14;
+  so.parameter_tolerance = 1e-10;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  const int m = cost->num_residuals();
+  Progress progress(sim, m, opt.progress, &result.cost_history);
+  so.callbacks.push_back(&progress);
+  so.update_state_every_iteration = false;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.message = summary.message;
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  const OptimumStatistics stats = optimum_statistics(problem, theta.data(), n);
+  result.covariance_message = stats.covariance_message;
+  if (stats.covariance.size()) result.correlation = stats.correlation();
+  std::vector<double> p(n);
+  for (int k = 0; k < n; ++k) {
+    TrajectoryFitParameter fp;
+    fp.key = opt.free[k];
+    fp.start = p0[k];
+    fp.value = p[k] = std::exp(theta[k]);
+    fp.lower = std::exp(lower[k]);
+    fp.upper = std::exp(upper[k]);
+    const double span = 1e-6 * (upper[k] - lower[k]);
+    fp.at_bound = theta[k] - lower[k] < span || upper[k] - theta[k] < span;
+    fp.identifiable = std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) ==
+                      stats.unidentifiable.end();
+    // Delta method: σ_p = p·σ_θ.
+    fp.std_error = stats.covariance.size() && fp.identifiable
+                       ? fp.value * std::sqrt(std::max(0.0, stats.covariance(k, k)))
+                       : std::numeric_limits<double>::quiet_NaN();
+    result.parameters.push_back(fp);
+  }
+  if (p != last_p || !last.ok) last = sim.run(p);
+  if (last.ok) {
+    result.final_rms = frame_rms(last, frames, sim.observation());
+    result.final_positions = last.y;
+  }
+  result.simulations = sim.count();
+  result.wall_s = std::chrono::duration<double>(Clock::now() - wall0).count();
+  result.cpu_s = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  return result;
+}
+
+}  // namespace wl

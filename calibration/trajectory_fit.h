@@ -1,0 +1,77 @@
+// Fit of scene parameters to a recorded trajectory (docs/calibration.md §7):
+// Ceres least squares on the observed point positions at the target's frames,
+//   r = y_k(p) − y_k^target,  y_k = H_k q(t_k),
+// with θ = log p bounded to [p₀/b, p₀·b] and Jacobians dr/dθ = H_k (∂q/∂p) p
+// from the integrator's forward sensitivities (docs/models.md §9.2). H_k picks
+// the model's node positions (yarn target, yarn model) or interpolates the
+// continuum at each crossing's material point (yarn target, continuum model).
+#pragma once
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "models/core/types.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+// One target frame: the observed points at a time, with the crossings'
+// material coordinates (needed to observe a continuum).
+struct TargetFrame {
+  double time = 0.0;
+  Eigen::MatrixXd points;  // n × 3
+  std::vector<Vec2> uv;    // per point; empty when unknown
+};
+
+struct TrajectoryFitOptions {
+  std::string model = "yarn";        // "yarn" or "fem"
+  std::string integrator;            // "" = the scene's; must offer sensitivities
+  std::vector<std::string> free;     // scene keys (calibration/scene_parameters.h)
+  std::map<std::string, double> start;  // start values; absent keys start at the scene's value
+  double bound_factor = 100.0;
+  int max_iterations = 50;
+  bool progress = false;
+};
+
+struct TrajectoryFitParameter {
+  std::string key;
+  double start = 0.0, value = 0.0;
+  double std_error = 0.0;  // NaN when the covariance is unavailable
+  double lower = 0.0, upper = 0.0;
+  bool at_bound = false;
+  bool identifiable = true;  // false: the trajectory does not tell it (optimum_statistics.h)
+};
+
+struct TrajectoryFitResult {
+  std::vector<TrajectoryFitParameter> parameters;
+  std::vector<std::vector<double>> correlation;  // empty when unavailable
+  std::string covariance_message;                // why it is unavailable
+  bool converged = false;
+  std::string message;  // Ceres's termination message
+  int iterations = 0;
+  int simulations = 0;
+  double wall_s = 0.0, cpu_s = 0.0;
+  int observed_points = 0;                // per frame
+  std::vector<double> cost_history;       // Ceres cost per iteration (iteration 0 = start)
+  std::vector<double> times;              // the fitted frames
+  std::vector<double> start_rms, final_rms;  // per frame, RMS distance to the target [m]
+  std::vector<Vec> start_positions, final_positions;  // per frame, the observed points (x₀,y₀,z₀,x₁,…) [m]
+};
+
+class TrajectoryFitError : public std::invalid_argument {  // bad input: exit 2
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// Fits opt.free to `target` (its frames at t > 0, in order). Throws
+// TrajectoryFitError for inputs that cannot be fitted (unknown or
+// non-differentiable key, a target that does not match the scene, an
+// integrator without sensitivities). A start that does not simulate is an
+// outcome (message), not an exception.
+TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetFrame>& target,
+                                   const TrajectoryFitOptions& opt);
+
+}  // namespace wl

@@ -1,0 +1,96 @@
+// `weavelab fidelity`: a scene run at every rung of the fidelity ladder
+// (fidelity_variants.h) and each rung measured against a yarn-level reference
+// at the reference's crossings (docs/design.md §7.5). Writes into the output folder
+//   fidelity.csv   one row per variant: DoFs, steps, CPU and wall time, RMS,
+//                  worst-frame RMS and max distance, energy difference, Pareto front
+//   fidelity.json  scene, reference, tolerance, the rows, the variants left
+//                  out and why, the cheapest variant within the tolerance (and
+//                  within 1 % and 5 % of the cloth size) with its speed-up
+// (experiments/plot_fidelity.py draws the Pareto chart from these).
+#pragma once
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "experiments/driver/fidelity_variants.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+struct FidelityConfig {
+  std::filesystem::path scene_path;
+  Scene scene;                                  // as loaded, command-line overrides applied
+  std::map<std::string, std::string> overrides;  // recorded in the JSON
+  std::string reference = "full";               // a yarn-level variant
+  std::vector<std::string> variants;            // empty: the whole ladder
+  std::optional<std::filesystem::path> fem_params;  // calibrated continuum parameters
+  std::optional<double> tolerance_m;            // absent: 1 % of the cloth size
+  int repeats = 1;                              // runs per variant; CPU and wall time are their medians
+  std::filesystem::path out_dir;
+  bool progress = true;
+};
+
+struct PlannedVariant {
+  std::string name;
+  VariantScene variant;
+};
+
+struct FidelityPlan {
+  PlannedVariant reference;
+  std::vector<PlannedVariant> variants;  // in ladder order, without the reference
+  std::vector<std::pair<std::string, std::string>> left_out;  // variant, why
+  std::string calibration;  // where the calibrated parameters come from ("" = none)
+  double cloth_size_m = 0;  // (max(wefts, warps) − 1)·L
+  double tolerance_m = 0;
+};
+
+// Checks every input before anything runs or is written: throws
+// std::invalid_argument (unknown variant, a continuum reference, a named
+// variant the scene cannot have, a tolerance not > 0, repeats < 1) or
+// FemParameterError.
+// Variants of the default ladder the scene cannot have, or that equal the
+// full model in this scene, are left out with the reason.
+FidelityPlan plan_fidelity(const FidelityConfig& config);
+
+struct FidelityRow {
+  std::string variant, model, outcome, message;
+  std::string same_as_full;  // why the variant is the full model under another name ("" otherwise)
+  int dofs = 0;
+  long steps = 0;
+  double cpu_s = 0, wall_s = 0;  // medians over FidelityConfig::repeats runs
+  // Distance between the reference crossings and the variant at the same
+  // crossing (yarn) or material point (continuum), over the frames reached:
+  //   rms = sqrt(mean over frames and compared points of d²), worst_frame_rms =
+  //   max over frames of the frame's RMS, max = max d [m].
+  double rms_m = 0, worst_frame_rms_m = 0, max_m = 0;
+  // max over frames of |ΔE_variant − ΔE_reference|, ΔE = (T + V)(t) − (T + V)(0), each model's own V [J]
+  double energy_diff_J = 0;
+  double compared_fraction = 0;   // compared points / (reference frames × crossings)
+  bool on_front = false;          // Pareto front of (cpu_s, worst_frame_rms_m) among the complete runs
+  bool complete() const { return outcome == "ok" && compared_fraction > 0; }
+};
+
+struct FidelityChoice {
+  double tolerance_m = 0;
+  std::string variant;  // cheapest complete variant with worst_frame_rms_m ≤ tolerance
+  double cpu_s = 0;
+  double speedup = 0;   // reference CPU time / the variant's
+};
+
+struct FidelityResult {
+  std::vector<FidelityRow> rows;  // reference first
+  FidelityChoice within_tolerance, within_1_percent, within_5_percent;
+  double wall_s = 0;
+};
+
+// Runs the plan and writes the two files. A reference run that does not end ok
+// is a std::runtime_error; a variant that fails is a row with its outcome.
+FidelityResult run_fidelity(const FidelityConfig& config, const FidelityPlan& plan);
+
+// Pareto front of points (cost, error), both to be small: on_front[i] when no
+// other point has cost ≤ and error ≤ with one of them strictly smaller.
+std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vector<double>& error);
+
+}  // namespace wl

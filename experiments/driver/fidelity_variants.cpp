@@ -1,0 +1,84 @@
+#include "experiments/driver/fidelity_variants.h"
+
+#include <stdexcept>
+
+#include "experiments/driver/calibrate.h"
+
+namespace wl {
+namespace {
+
+// Whether every pin and handle lies on the lattice of stride k and k divides
+// wefts − 1 and warps − 1 (the scene rule of fem.stride, models/scene/scene.cpp).
+bool stride_fits(const Scene& s, int k) {
+  if ((s.wefts - 1) % k != 0 || (s.warps - 1) % k != 0) return false;
+  for (const NodeRef& n : s.pins)
+    if (n.i % k != 0 || n.j % k != 0) return false;
+  for (const Handle& h : s.handles)
+    if (h.node.i % k != 0 || h.node.j % k != 0) return false;
+  return true;
+}
+
+}  // namespace
+
+const std::vector<std::string>& fidelity_variant_names() {
+  static const std::vector<std::string> names{"full",   "no_friction", "no_parallel_contact", "linear_shear",
+                                              "frozen_sliding", "fem_s1", "fem_s2", "fem_s4", "fem_first_guess"};
+  return names;
+}
+
+VariantScene variant_scene(const Scene& scene, const std::string& name, const std::optional<FemMaterial>& calibrated) {
+  VariantScene v{scene, "yarn", "", ""};
+  Scene& s = v.scene;
+  if (name == "full") return v;
+  if (name == "no_friction") {
+    // The yarn model builds friction only on sliding coordinates (docs/models.md §3.7).
+    if (!(s.terms.friction && s.sliding)) v.same_as_full = "the scene has no friction (off, or sliding frozen)";
+    s.terms.friction = false;
+    return v;
+  }
+  if (name == "no_parallel_contact") {
+    if (!(s.terms.parallel_contact && s.sliding))
+      v.same_as_full = "the scene has no parallel contact (off, or sliding frozen)";
+    s.terms.parallel_contact = false;
+    return v;
+  }
+  if (name == "linear_shear") {
+    if (!(s.terms.shear && s.contact.shear_model == ContactParams::ShearModel::gong))
+      v.same_as_full = "the scene has no shear lock (shear off, or already Cirio's linear shear)";
+    s.contact.shear_model = ContactParams::ShearModel::cirio;
+    return v;
+  }
+  if (name == "frozen_sliding") {
+    if (!s.sliding) v.same_as_full = "sliding is already frozen in the scene";
+    s.sliding = false;
+    return v;
+  }
+  const bool first_guess = name == "fem_first_guess";
+  int stride = 1;
+  if (name == "fem_s2") stride = 2;
+  if (name == "fem_s4") stride = 4;
+  if (!first_guess && name != "fem_s1" && stride == 1) {
+    std::string known;
+    for (const std::string& n : fidelity_variant_names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown variant '" + name + "', expected one of " + known);
+  }
+  v.model = "fem";
+  s.fem.mesh_file.clear();
+  s.fem.stride = stride;
+  if (!stride_fits(scene, stride))
+    v.impossible = "stride " + std::to_string(stride) +
+                   " does not fit the grid (it must divide wefts − 1 and warps − 1 and hit every pin and handle)";
+  if (first_guess) {
+    v.scene = with_material(s, default_fem_material(scene), false);
+    return v;
+  }
+  if (!calibrated) {
+    v.impossible = "no calibrated parameters: give --fem-params FILE (written by `weavelab calibrate`) or a scene "
+                   "with [fem] parameter_file";
+    return v;
+  }
+  v.scene = with_material(s, *calibrated, s.fem.border_strip);
+  return v;
+}
+
+}  // namespace wl

@@ -1,0 +1,134 @@
+#include "experiments/driver/fit_command.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "calibration/scene_parameters.h"
+#include "experiments/driver/experiment_meta.h"
+#include "experiments/driver/sweep.h"
+#include "experiments/output/atomic_file.h"
+#include "experiments/output/csv_table.h"
+#include "experiments/output/json_writer.h"
+#include "experiments/output/run_reader.h"
+#include "models/fem/fem_material.h"
+
+namespace wl {
+namespace {
+
+std::string num(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", x);
+  return b;
+}
+
+}  // namespace
+
+FitCommandPlan plan_fit(const FitCommandConfig& c) {
+  FitCommandPlan p;
+  p.scene = load_scene(c.scene_path.string());
+  if (!c.fem_params.empty()) {
+    p.scene.fem.parameter_file = c.fem_params;
+    (void)fem_material(p.scene);  // a bad file is exit 2 before anything runs
+  }
+  if (c.frames < 0) throw TrajectoryFitError("--frames: got " + std::to_string(c.frames) + ", expected a count >= 1");
+  for (const RecordedFrame& f : read_run_frames(c.target_dir)) {
+    if (!(f.time > 0.0)) continue;
+    if (c.frames > 0 && static_cast<int>(p.target.size()) == c.frames) break;
+    TargetFrame t;
+    t.time = f.time;
+    t.points = f.points;
+    for (size_t i = 0; i < f.u.size(); ++i) t.uv.emplace_back(f.u[i], f.v[i]);
+    p.target.push_back(std::move(t));
+  }
+  if (c.frames > static_cast<int>(p.target.size()))
+    throw TrajectoryFitError("--frames: got " + std::to_string(c.frames) + ", the target " + c.target_dir.string() +
+                             " has " + std::to_string(p.target.size()) + " frames after t = 0");
+  for (const auto& [key, value] : c.fit.start) scene_parameter(p.scene, key);  // an unknown key: exit 2
+  return p;
+}
+
+TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) {
+  const TrajectoryFitResult r = fit_trajectory(p.scene, p.target, c.fit);
+  std::filesystem::create_directories(c.out_dir);
+
+  Json j = Json::object();
+  j.set("scene", scene_json(c.scene_path, p.scene.text, p.scene, {}));
+  j.set("target", c.target_dir.string());
+  j.set("model", c.fit.model);
+  j.set("integrator", c.fit.integrator.empty() ? p.scene.integrator : c.fit.integrator);
+  j.set("frames", static_cast<int>(p.target.size()));
+  j.set("observed_points", r.observed_points);
+  Json params = Json::array();
+  for (const TrajectoryFitParameter& fp : r.parameters) {
+    Json e = Json::object();
+    e.set("key", fp.key);
+    e.set("start", fp.start);
+    e.set("value", fp.value);
+    e.set("std_error", std::isfinite(fp.std_error) ? Json(fp.std_error) : Json(nullptr));
+    e.set("lower", fp.lower);
+    e.set("upper", fp.upper);
+    e.set("at_bound", fp.at_bound);
+    e.set("identifiable", fp.identifiable);
+    params.push(std::move(e));
+  }
+  j.set("parameters", std::move(params));
+  Json corr = Json::array();
+  for (const auto& row : r.correlation) corr.push(Json(row));
+  j.set("correlation", std::move(corr));
+  j.set("covariance_note", r.covariance_message.empty()
+                               ? "ceres::Covariance (DENSE_SVD) of log-parameters times the residual variance"
+                               : r.covariance_message);
+  j.set("converged", r.converged);
+  j.set("message", r.message);
+  j.set("iterations", r.iterations);
+  j.set("simulations", r.simulations);
+  j.set("wall_s", r.wall_s);
+  j.set("cpu_s", r.cpu_s);
+  if (!r.start_rms.empty()) j.set("start_rms_m", *std::max_element(r.start_rms.begin(), r.start_rms.end()));
+  if (!r.final_rms.empty()) j.set("final_rms_m", *std::max_element(r.final_rms.begin(), r.final_rms.end()));
+  j.set("created", utc_now());
+  add_provenance(j);
+  write_file_atomically(c.out_dir / "fit.json", j.dump());
+
+  if (c.fit.model == "fem" && !r.final_rms.empty()) {  // usable as `weavelab run --fem-params`
+    Scene fitted = p.scene;
+    for (const TrajectoryFitParameter& fp : r.parameters) set_scene_parameter(fitted, fp.key, fp.value);
+    write_fem_parameter_file((c.out_dir / "params.toml").string(), fem_material(fitted),
+                             {{"method", "weavelab fit: trajectory of " + c.target_dir.string()},
+                              {"source_scene", c.scene_path.string()},
+                              {"source_scene_hash", reference_hash(p.scene.text)},
+                              {"frames", std::to_string(p.target.size())},
+                              {"created", utc_now()}});
+  }
+
+  CsvTable conv(c.out_dir / "convergence.csv", {"iteration", "cost", "rms_m"});
+  const double per_point = 2.0 / (r.observed_points * std::max<size_t>(1, r.times.size()));
+  for (size_t i = 0; i < r.cost_history.size(); ++i)
+    conv.row({std::to_string(i), num(r.cost_history[i]), num(std::sqrt(per_point * r.cost_history[i]))});
+  conv.commit();
+
+  // The point that moves most in the target, for the trajectory chart.
+  int tracked = 0;
+  double most = -1;
+  const Eigen::MatrixXd& first = p.target.front().points;
+  for (Eigen::Index i = 0; i < first.rows(); ++i) {
+    const double d = (p.target.back().points.row(i) - first.row(i)).norm();
+    if (d > most) most = d, tracked = static_cast<int>(i);
+  }
+  CsvTable frames(c.out_dir / "frames.csv",
+                  {"time_s", "start_rms_m", "final_rms_m", "point", "target_x", "target_y", "target_z", "start_x",
+                   "start_y", "start_z", "fitted_x", "fitted_y", "fitted_z"});
+  for (size_t k = 0; k < r.times.size(); ++k) {
+    std::vector<std::string> row{num(r.times[k]), num(r.start_rms[k]),
+                                 k < r.final_rms.size() ? num(r.final_rms[k]) : "nan", std::to_string(tracked)};
+    for (int c3 = 0; c3 < 3; ++c3) row.push_back(num(p.target[k].points(tracked, c3)));
+    for (int c3 = 0; c3 < 3; ++c3) row.push_back(num(r.start_positions[k][3 * tracked + c3]));
+    for (int c3 = 0; c3 < 3; ++c3)
+      row.push_back(k < r.final_positions.size() ? num(r.final_positions[k][3 * tracked + c3]) : "nan");
+    frames.row(row);
+  }
+  frames.commit();
+  return r;
+}
+
+}  // namespace wl

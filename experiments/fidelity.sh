@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# The fidelity ladder on the hanging cloth: 17×17 over the published 0.5 s
+# (CPU times the medians of 3 runs) and 65×65 over 0.2 s (one run each: the
+# full yarn model costs about 0.8 s per step there on one thread). The
+# continuum is calibrated first on a 17×17 patch of each scene's fabric (one
+# start; reused when results/calibration/<scene>_fidelity/params.toml exists).
+# Results and Pareto charts in results/fidelity/<scene>/.
+# CPU times are of one thread (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1): a
+# busy machine inflates multi-threaded CPU time through spinning threads.
+# Extra arguments go to `weavelab fidelity` (e.g. --tolerance 0.0008).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+experiments/setup.sh >/dev/null
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+start=$(date +%s)
+for spec in hanging_wind:0.5:3 hanging_wind_65:0.2:1; do  # scene:duration:repeats
+  IFS=: read -r name duration repeats <<<"$spec"
+  cal=results/calibration/${name}_fidelity
+  [ -f "$cal/params.toml" ] ||
+    build/weavelab calibrate "experiments/scenes/$name.toml" --patch 17 --starts 1 --quiet --out "$cal"
+  build/weavelab fidelity "experiments/scenes/$name.toml" --duration "$duration" --repeats "$repeats" \
+    --fem-params "$cal/params.toml" --out "results/fidelity/$name" "$@"
+  /usr/bin/python3 experiments/plot_fidelity.py "results/fidelity/$name"
+done
+echo "fidelity.sh: $(( $(date +%s) - start )) s wall (without the build); results in results/fidelity/" >&2

@@ -1,0 +1,29 @@
+// Reads back the frames of a finished run folder (run.pvd and the ASCII .vtu
+// files it lists, as written by PvdSeries and to_vtu): per frame its time, the
+// points and, where present, the crossings' material coordinates (point data
+// "u", "v"). Only the project's own output format is understood.
+#pragma once
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace wl {
+
+struct RecordedFrame {
+  double time = 0.0;
+  Eigen::MatrixXd points;      // n × 3
+  std::vector<double> u, v;    // per point, empty when the frame has no such arrays
+};
+
+class RunReadError : public std::invalid_argument {  // bad input: exit 2
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// Frames in the order of run.pvd; throws RunReadError naming the file and what
+// is wrong (missing, not a run folder, malformed, point counts that differ).
+std::vector<RecordedFrame> read_run_frames(const std::filesystem::path& run_dir);
+
+}  // namespace wl

@@ -1,0 +1,154 @@
+// Trajectory fitting (docs/calibration.md §7): parameters recovered from a
+// trajectory the same model produced with known values, for the yarn level
+// (shipped physics: sliding, Gong shear and friction) and for the continuum,
+// observed at its vertices and at crossing material points.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "calibration/scene_parameters.h"
+#include "calibration/trajectory_fit.h"
+#include "integrators/integrator.h"
+#include "models/fem/fem_material.h"
+#include "models/fem/fem_model.h"
+#include "models/scene/parameter_keys.h"
+#include "models/yarn/yarn_model.h"
+
+namespace wl {
+namespace {
+
+Scene small_scene() {
+  Scene s = parse_scene(R"(
+[cloth]
+warps = 5
+wefts = 5
+[pose]
+kind = "upright"
+[[handles]]
+node = [0, 0]
+[[handles]]
+node = [4, 0]
+[wind]
+velocity_m_per_s = [0.0, 5.0, 0.0]
+air_density_kg_per_m3 = 2.0
+[time]
+duration_s = 0.03
+dt_s = 0.001
+output_interval_s = 0.01
+integrator = "be-newton"
+)",
+                        "fit.toml");
+  return s;
+}
+
+// The model's observed points at the output times: `observe(model, q)` gives n × 3.
+template <class M>
+std::vector<TargetFrame> record(const Scene& s, const std::function<TargetFrame(const M&, const Vec&)>& observe) {
+  M model(s);
+  auto in = make_integrator("be-newton");
+  IntegratorOptions opt;
+  opt.dt = s.dt_s;
+  in->initialize(model, 0.0, model.initial_q(), model.initial_v(), opt);
+  std::vector<TargetFrame> frames;
+  for (double t : {0.01, 0.02, 0.03}) {
+    EXPECT_EQ(in->advance_to(t).outcome, Outcome::ok);
+    frames.push_back(observe(model, in->q()));
+    frames.back().time = t;
+  }
+  return frames;
+}
+
+void expect_recovered(const TrajectoryFitResult& r, const Scene& truth, double rtol) {
+  EXPECT_TRUE(r.converged) << r.message;
+  for (const TrajectoryFitParameter& p : r.parameters) {
+    const double want = scene_parameter(truth, p.key);
+    EXPECT_NEAR(p.value, want, rtol * want) << p.key << " started at " << p.start;
+    EXPECT_NE(p.start, p.value);
+  }
+  ASSERT_FALSE(r.final_rms.empty());
+  EXPECT_LT(r.final_rms.back(), 1e-3 * r.start_rms.back());
+}
+
+TEST(TrajectoryFit, RecoversYarnParametersFromTheirOwnTrajectory) {
+  const Scene truth = small_scene();
+  const auto target = record<YarnModel>(truth, [](const YarnModel& m, const Vec& q) {
+    TargetFrame f;
+    f.points.resize(m.grid().num_nodes(), 3);
+    for (int k = 0; k < m.grid().num_nodes(); ++k) f.points.row(k) = q.segment<3>(m.grid().dofs(k).x).transpose();
+    return f;
+  });
+  TrajectoryFitOptions opt;
+  const std::string rho = yarn_type_key("default", kDensityField), bend = yarn_type_key("default", kBendingModulusField);
+  opt.free = {kShearModulusKey, rho, bend};
+  opt.start = {{kShearModulusKey, 1400.0}, {rho, 1.5e-3}, {bend, 2e-4}};
+  const TrajectoryFitResult r = fit_trajectory(truth, target, opt);
+  expect_recovered(r, truth, 1e-4);
+  EXPECT_EQ(r.correlation.size(), 3u);
+  for (const auto& p : r.parameters) EXPECT_TRUE(std::isfinite(p.std_error)) << p.key;
+
+  // Nothing slides in these 30 ms, so μ leaves no trace in the trajectory:
+  // the fit says it cannot tell μ (rank-deficient covariance, no standard errors).
+  opt.free.push_back(kFrictionCoefficientKey);
+  opt.start[kFrictionCoefficientKey] = 0.35;
+  const TrajectoryFitResult with_mu = fit_trajectory(truth, target, opt);
+  EXPECT_FALSE(with_mu.covariance_message.empty());
+  EXPECT_FALSE(with_mu.parameters.back().identifiable);
+  EXPECT_TRUE(std::isnan(with_mu.parameters.back().std_error));
+  for (int k = 0; k < 3; ++k) {  // the others keep their standard errors
+    EXPECT_TRUE(with_mu.parameters[k].identifiable) << with_mu.parameters[k].key;
+    EXPECT_TRUE(std::isfinite(with_mu.parameters[k].std_error));
+  }
+}
+
+TEST(TrajectoryFit, RecoversContinuumParametersAtVerticesAndAtCrossings) {
+  const Scene truth = small_scene();
+  TrajectoryFitOptions opt;
+  opt.model = "fem";
+  opt.free = {kFemShear, kFemWarpBending};
+  const FemMaterial m = fem_material(truth);
+  opt.start = {{kFemShear, 2.0 * m.shear_N_per_m}, {kFemWarpBending, 0.6 * m.warp_bending_N_m}};
+  const auto vertices = record<FemModel>(truth, [](const FemModel& fem, const Vec& q) {
+    TargetFrame f;
+    f.points = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(q.data(), q.size() / 3, 3);
+    return f;
+  });
+  expect_recovered(fit_trajectory(truth, vertices, opt), truth, 1e-4);
+
+  // Crossings half-way between vertices, with their material coordinates.
+  const auto crossings = record<FemModel>(truth, [&](const FemModel& fem, const Vec& q) {
+    TargetFrame f;
+    f.points.resize(4, 3);
+    for (int k = 0; k < 4; ++k) {
+      f.uv.emplace_back((0.5 + k) * truth.spacing_m, (3.5 - 0.7 * k) * truth.spacing_m);
+      Vec3 x;
+      EXPECT_TRUE(fem.surface_point(q, f.uv.back(), &x));
+      f.points.row(k) = x.transpose();
+    }
+    return f;
+  });
+  expect_recovered(fit_trajectory(truth, crossings, opt), truth, 1e-4);
+}
+
+TEST(TrajectoryFit, RejectsWhatCannotBeFitted) {
+  const Scene s = small_scene();
+  std::vector<TargetFrame> target(1);
+  target[0].time = 0.01;
+  target[0].points = Eigen::MatrixXd::Zero(25, 3);
+  TrajectoryFitOptions opt;
+  opt.free = {"contact.no_such_key"};
+  EXPECT_THROW(fit_trajectory(s, target, opt), ParameterKeyError);
+  opt.free = {kFemShear};  // a continuum key, the yarn model does not depend on it
+  EXPECT_THROW(fit_trajectory(s, target, opt), TrajectoryFitError);
+  opt.free = {kShearModulusKey};
+  opt.integrator = "ida";
+  EXPECT_THROW(fit_trajectory(s, target, opt), TrajectoryFitError);
+  opt.integrator.clear();
+  target[0].points = Eigen::MatrixXd::Zero(24, 3);
+  EXPECT_THROW(fit_trajectory(s, target, opt), TrajectoryFitError);
+  target[0].points = Eigen::MatrixXd::Zero(25, 3);
+  target[0].time = 1.0;  // beyond the duration
+  EXPECT_THROW(fit_trajectory(s, target, opt), TrajectoryFitError);
+}
+
+}  // namespace
+}  // namespace wl

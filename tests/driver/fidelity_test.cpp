@@ -1,0 +1,176 @@
+// The fidelity ladder (docs/design.md §7.5) on 5×5 cloths of 50 ms: the
+// reference and its aliases measure zero, a term that does nothing measures at
+// round-off, a simplification that matters does not; the plan refuses bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "experiments/driver/fidelity.h"
+#include "experiments/driver/model_factory.h"
+#include "experiments/driver/sweep.h"
+
+namespace wl {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kTime = "[time]\nduration_s = 0.05\ndt_s = 0.001\noutput_interval_s = 0.01\n";
+
+// No pins, handles or wind: the cloth falls freely and rigidly, so no crossing
+// slides and friction (built: sliding is on) exerts no force.
+std::string free_fall() { return std::string("[cloth]\nwarps = 5\nwefts = 5\n") + kTime; }
+
+// Held at two top corners in the wind, friction off: the yarns slide freely.
+std::string sliding_in_wind() {
+  return std::string("[cloth]\nwarps = 5\nwefts = 5\n[[handles]]\nnode = [0, 0]\n[[handles]]\nnode = [4, 0]\n"
+                     "[wind]\nvelocity_m_per_s = [0.0, 5.0, 0.0]\nair_density_kg_per_m3 = 2.0\ndrag_Ns_per_m3 = 0.5\n"
+                     "[terms]\nfriction = false\n") +
+         kTime;
+}
+
+class Fidelity : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("weavelab_fidelity_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  FidelityConfig config(const std::string& scene_text, std::vector<std::string> variants) {
+    FidelityConfig c;
+    c.scene_path = "test.toml";
+    c.scene = parse_scene(scene_text, "test.toml");
+    c.variants = std::move(variants);
+    c.out_dir = dir_;
+    c.progress = false;
+    return c;
+  }
+  const FidelityRow& row(const FidelityResult& r, const std::string& name) {
+    for (const FidelityRow& x : r.rows)
+      if (x.variant == name) return x;
+    throw std::runtime_error("no row " + name);
+  }
+  fs::path dir_;
+};
+
+TEST_F(Fidelity, ReferenceAndItsAliasMeasureZero) {
+  // Friction is off in this scene, so no_friction is the full model under another name.
+  const FidelityConfig c = config(sliding_in_wind(), {"no_friction"});
+  const FidelityPlan p = plan_fidelity(c);
+  ASSERT_EQ(p.variants.size(), 1u);
+  EXPECT_FALSE(p.variants[0].variant.same_as_full.empty());
+  const FidelityResult r = run_fidelity(c, p);
+  ASSERT_EQ(r.rows.size(), 2u);
+  for (const FidelityRow& x : r.rows) {
+    SCOPED_TRACE(x.variant);
+    EXPECT_EQ(x.outcome, "ok");
+    EXPECT_EQ(x.compared_fraction, 1.0);
+    EXPECT_EQ(x.rms_m, 0.0);  // assembly is bitwise reproducible (docs/design.md §3.3)
+    EXPECT_EQ(x.max_m, 0.0);
+    EXPECT_EQ(x.energy_diff_J, 0.0);
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "fidelity.csv"));
+  EXPECT_TRUE(fs::exists(dir_ / "fidelity.json"));
+}
+
+TEST_F(Fidelity, FrictionWhereNothingSlidesChangesNothing) {
+  const FidelityConfig c = config(free_fall(), {"no_friction"});
+  const FidelityPlan p = plan_fidelity(c);
+  ASSERT_EQ(p.variants.size(), 1u);
+  EXPECT_TRUE(p.variants[0].variant.same_as_full.empty());  // friction is built in the reference
+  const FidelityResult r = run_fidelity(c, p);
+  const FidelityRow& x = row(r, "no_friction");
+  EXPECT_EQ(x.outcome, "ok");
+  // Round-off on a 4 mm cloth that falls 12 mm: far below any physical effect.
+  EXPECT_LT(x.max_m, 1e-12);
+  EXPECT_GT(row(r, "full").steps, 0);
+}
+
+TEST_F(Fidelity, FrozenSlidingWhereYarnsSlideMatters) {
+  const FidelityConfig c = config(sliding_in_wind(), {"frozen_sliding"});
+  // The reference's crossings do slide: their material coordinates leave the rest grid.
+  auto u_of = [](const Frame& f) {
+    for (const DataArray& a : f.point_data)
+      if (a.name == "u") return a.values;
+    throw std::runtime_error("no u");
+  };
+  auto model = make_model(c.scene, "yarn");
+  const std::vector<double> rest = u_of(model->frame(0.0, model->initial_q(), model->initial_v()));
+  double slid = 0;
+  RecordOptions rec;
+  rec.on_frame = [&](const Frame& f) {
+    const std::vector<double> u = u_of(f);
+    for (size_t n = 0; n < u.size(); ++n) slid = std::max(slid, std::abs(u[n] - rest[n]));
+  };
+  IntegratorOptions o;
+  o.dt = c.scene.dt_s;
+  ASSERT_EQ(run_recorded(c.scene, "yarn", c.scene.integrator, o, rec).result.outcome, Outcome::ok);
+  ASSERT_GT(slid, 1e-6);
+  const FidelityResult r = run_fidelity(c, plan_fidelity(c));
+  const FidelityRow& x = row(r, "frozen_sliding");
+  EXPECT_EQ(x.outcome, "ok");
+  EXPECT_LT(x.dofs, row(r, "full").dofs);
+  EXPECT_GT(x.worst_frame_rms_m, 1e-6);  // 10⁶ × the round-off level of the test above
+}
+
+TEST_F(Fidelity, ContinuumIsMeasuredAtTheCrossingsMaterialPoints) {
+  // Free fall is rigid, so the continuum's surface passes through every crossing.
+  const FidelityConfig c = config(free_fall(), {"fem_first_guess"});
+  const FidelityResult r = run_fidelity(c, plan_fidelity(c));
+  const FidelityRow& x = row(r, "fem_first_guess");
+  EXPECT_EQ(x.model, "fem");
+  EXPECT_EQ(x.compared_fraction, 1.0);
+  EXPECT_LT(x.max_m, 1e-12);
+}
+
+TEST_F(Fidelity, DefaultLadderLeavesOutWhatTheSceneCannotHave) {
+  // 7×7 held at (0,0) and (6,0): stride 4 misses the handles; no calibrated parameters.
+  const std::string scene = "[cloth]\nwarps = 7\nwefts = 7\n[[handles]]\nnode = [0, 0]\n[[handles]]\nnode = [6, 0]\n";
+  const FidelityPlan p = plan_fidelity(config(scene, {}));
+  std::vector<std::string> run, out;
+  for (const auto& v : p.variants) run.push_back(v.name);
+  for (const auto& [name, why] : p.left_out) out.push_back(name);
+  EXPECT_EQ(run, (std::vector<std::string>{"no_friction", "no_parallel_contact", "linear_shear", "frozen_sliding",
+                                           "fem_first_guess"}));
+  EXPECT_EQ(out, (std::vector<std::string>{"fem_s1", "fem_s2", "fem_s4"}));
+  EXPECT_DOUBLE_EQ(p.cloth_size_m, 6e-3);
+  EXPECT_DOUBLE_EQ(p.tolerance_m, 6e-5);  // 1 % of the cloth size
+}
+
+TEST_F(Fidelity, PlanRefusesBadInput) {
+  const std::string scene = free_fall();
+  auto refused = [&](FidelityConfig c, const std::string& fragment) {
+    try {
+      (void)plan_fidelity(c);
+      ADD_FAILURE() << "accepted; expected an error containing '" << fragment << "'";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  refused(config(scene, {"no_friction", "coarse"}), "--variants: unknown variant 'coarse'");
+  refused(config(scene, {"no_friction", "no_friction"}), "listed twice");
+  refused(config(scene, {"fem_s1"}), "no calibrated parameters");
+  FidelityConfig c = config(scene, {});
+  c.reference = "fem_first_guess";
+  refused(c, "expected a yarn-level variant");
+  c.reference = "finest";
+  refused(c, "--reference: unknown variant 'finest'");
+  c = config(scene, {});
+  c.tolerance_m = 0.0;
+  refused(c, "--tolerance");
+  c.tolerance_m = -1e-3;
+  refused(c, "--tolerance");
+  c = config(scene, {});
+  c.repeats = 0;
+  refused(c, "--repeats");
+  EXPECT_FALSE(fs::exists(dir_));
+}
+
+TEST(ParetoFront, KeepsExactlyTheUndominatedPoints) {
+  // (cost, error): b dominates c; d ties a on cost with a larger error; e is the cheapest.
+  const std::vector<double> cost{1.0, 2.0, 3.0, 1.0, 0.5}, error{0.5, 0.1, 0.2, 0.6, 1.0};
+  EXPECT_EQ(pareto_front(cost, error), (std::vector<bool>{true, true, false, false, true}));
+}
+
+}  // namespace
+}  // namespace wl
