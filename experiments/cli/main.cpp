@@ -371,11 +371,6 @@ int main(int argc, char** argv) {
       return r.converged ? 0 : 1;
     }
     wl::Scene scene = wl::load_scene(scene_path);
-    if (!fem_params.empty()) {
-      scene.fem.parameter_file = fem_params;
-      (void)wl::fem_material(scene);  // a bad file is exit 2 before anything is written
-    }
-    wl::Scene scene = wl::load_scene(scene_path);
     wl::RunOptions opt;
     opt.model = model;
     opt.progress = !quiet;
