@@ -339,6 +339,7 @@ int main(int argc, char** argv) {
         std::cerr << "weavelab: fidelity: " << e.what() << "\n";
         return 1;
       }
+    }
     if (*fit) {
       fitc.scene_path = fit_scene;
       fitc.target_dir = fit_target;
