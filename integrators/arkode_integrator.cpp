@@ -42,7 +42,8 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   } else {
     // M(q) is symmetric positive definite: Cholesky (CHOLMOD), twice as fast
     // as LU for arkode-dirk on the yarn cloth; LU if Cholesky ever fails.
-    msolver_ = std::make_unique<SparseSolver>(model.pattern(), fixed_, SparseSolver::Backend::cholmod);
+    msolver_ = std::make_unique<SparseSolver>(model.pattern(), fixed_,
+                                              SparseSolver::Options{LinearSolverMethod::cholmod, {}});
   }
 
   if (!ctx_) ctx_ = sun::make_context();
@@ -107,7 +108,8 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
              std::abs(gamma / at_setup.beta - 1.0) > 0.2;
     };
     const unsigned filter = variant_ == Variant::imex ? kImplicitTerms : 0u;
-    ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, filter, mass_in_arkode_, query, stale);
+    ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, filter, mass_in_arkode_, step_solver_options(),
+                                                query, stale);
     check(ARKStepSetLinearSolver(m, ls_->get(), nullptr), "ARKStepSetLinearSolver");
     // A direct solve: rule out the "right-hand side already small, return 0"
     // shortcut SUNDIALS takes for iterative linear solvers (defensive: a
@@ -128,7 +130,7 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
       c = {1.0, 0.0, 0.0, 1.0, 0.0, 1.0, false};
       return true;
     };
-    mls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, true, query);
+    mls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, true, SparseSolver::Options{}, query);
     check(ARKStepSetMassLinearSolver(m, mls_->get(), nullptr, SUNFALSE), "ARKStepSetMassLinearSolver");
     check(ARKStepSetMassTimes(m, nullptr, &ArkodeIntegrator::mass_times, this), "ARKStepSetMassTimes");
     check(ARKStepSetMassEpsLin(m, 1e-12), "ARKStepSetMassEpsLin");
@@ -150,8 +152,8 @@ bool ArkodeIntegrator::factor_mass_at(const Vec& q, double t, const SparseMatrix
   }
   ++own_setups_;
   mass_factored_ = msolver_->factorize(*mass);
-  if (!mass_factored_ && msolver_->backend() == SparseSolver::Backend::cholmod) {
-    msolver_ = std::make_unique<SparseSolver>(model_->pattern(), fixed_, SparseSolver::Backend::umfpack);
+  if (!mass_factored_ && msolver_->method() == LinearSolverMethod::cholmod) {
+    msolver_ = std::make_unique<SparseSolver>(model_->pattern(), fixed_);
     mass_factored_ = msolver_->factorize(*mass);
   }
   mass_q_ = q;
@@ -227,6 +229,7 @@ void ArkodeIntegrator::update_stats() {
   stats_.linear_setups = (ls_ ? ls_->setups() : 0) + (mls_ ? mls_->setups() : 0) + own_setups_;
   stats_.linear_solves = (ls_ ? ls_->solves() : 0) + (mls_ ? mls_->solves() : 0) + own_solves_;
   stats_.nonlinear_iters = nni;
+  if (ls_) record_solver(ls_->sparse_solver());
   stats_.wall_s = own_.wall_s;
   stats_.cpu_s = own_.cpu_s;
 }

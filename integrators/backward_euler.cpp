@@ -17,7 +17,7 @@ void BackwardEuler::initialize(Model& model, double t0, const Vec& q0, const Vec
   bind(model, t0, q0, v0, opt);
   allocate_evaluation(model, ev_);
   a_ = model.pattern();
-  solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs());
+  solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs(), step_solver_options());
 }
 
 void BackwardEuler::form_step_matrix(double h) {
@@ -36,13 +36,13 @@ StepResult BackwardEuler::step_linear(double h, int* iters) {
   ++stats_.jac_evals;
   form_step_matrix(h);
   ++stats_.linear_setups;
-  if (!solver_->factorize(a_)) return {Outcome::diverged, "singular step matrix"};
-  Vec rhs = h * (ev_.force + h * (ev_.dfdq * v_));
-  Vec dv;
-  solver_->solve(rhs, dv);
+  if (!solver_->factorize(a_)) return {Outcome::diverged, solver_->failure()};
+  rhs_.noalias() = ev_.dfdq * v_;
+  rhs_ = h * (ev_.force + h * rhs_);
+  if (!solver_->solve(rhs_, dv_)) return {Outcome::diverged, solver_->failure()};
   ++stats_.linear_solves;
-  if (dq_dp_.cols() > 0) propagate_linear_sensitivities(h, dv);
-  v_ += dv;
+  if (dq_dp_.cols() > 0) propagate_linear_sensitivities(h, dv_);
+  v_ += dv_;
   zero_fixed(v_, fixed_);
   q_ += h * v_;
   *iters = 1;
@@ -72,9 +72,9 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
     ev_.mass = m0;
     form_step_matrix(h);
     ++stats_.linear_setups;
-    if (!solver_->factorize(a_)) return {Outcome::diverged, "singular Newton matrix"};
+    if (!solver_->factorize(a_)) return {Outcome::diverged, "Newton matrix: " + solver_->failure()};
     Vec dv;
-    solver_->solve(-g, dv);
+    if (!solver_->solve(-g, dv)) return {Outcome::diverged, "Newton matrix: " + solver_->failure()};
     ++stats_.linear_solves;
     ++stats_.nonlinear_iters;
     // Backtracking line search on ‖G‖.
@@ -115,6 +115,7 @@ StepResult BackwardEuler::step(double h) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   stats_.wall_s += wall;
   stats_.cpu_s += double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  record_solver(*solver_);
   if (r.outcome != Outcome::ok) return r;
   t_ += h;
   ++stats_.steps;

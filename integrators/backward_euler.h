@@ -24,7 +24,8 @@ class BackwardEuler : public Integrator {
 
   // One step of size h from the current state (exposed for benchmarks).
   StepResult step(double h);
-  // The solver of the last step and the step matrix it factorized (benchmarks).
+  // The solver of the last step: solve() solves with that step's matrix
+  // (to kGmresTolerance under gmres); the step matrix it was given.
   const SparseSolver& solver() const { return *solver_; }
   const SparseMatrix& step_matrix() const { return a_; }
 
@@ -44,6 +45,7 @@ class BackwardEuler : public Integrator {
   Evaluation ev_;
   SparseMatrix a_;
   std::unique_ptr<SparseSolver> solver_;
+  Vec rhs_, dv_;  // be-linear's right-hand side and solution, kept between steps
 };
 
 }  // namespace wl

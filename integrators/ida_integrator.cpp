@@ -67,8 +67,8 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
     IDAGetCurrentCj(mem_.get(), &cj);
     return 2.0 / (1.0 + cj / cj_setup_);
   };
-  ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, !model.mass_depends_on_q(), query, stale,
-                                              scale);
+  ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, !model.mass_depends_on_q(),
+                                              step_solver_options(), query, stale, scale);
   auto check = [&](int flag, const char* what) {
     if (flag < 0) throw std::runtime_error(std::string("ida: ") + what + " failed: " + IDAGetReturnFlagName(flag));
   };
@@ -122,6 +122,7 @@ void IdaIntegrator::update_stats() {
   stats_.linear_setups = ls_ ? ls_->setups() : 0;
   stats_.linear_solves = ls_ ? ls_->solves() : 0;
   stats_.nonlinear_iters = nni;
+  if (ls_) record_solver(ls_->sparse_solver());
   stats_.wall_s = own_.wall_s;
   stats_.cpu_s = own_.cpu_s;
 }

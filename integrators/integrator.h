@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/sparse_solver.h"
 #include "models/core/model.h"
 
 namespace wl {
@@ -24,6 +25,10 @@ struct IntegratorStats {
   long linear_setups = 0;    // numeric factorizations
   long linear_solves = 0;
   long nonlinear_iters = 0;  // Newton iterations (implicit methods)
+  long factorizations = 0;   // sparse numeric factorizations (fewer than setups when gmres keeps one)
+  long krylov_iters = 0;     // GMRES iterations (linear solver gmres)
+  std::string linear_solver; // the step matrix solver in use (SparseSolver::description())
+  double step_matrix_asymmetry = 0.0;  // largest ‖A − Aᵀ‖_F / ‖A‖_F seen
   double wall_s = 0.0;
   double cpu_s = 0.0;
 };
@@ -40,6 +45,8 @@ struct IntegratorOptions {
   int newton_max_iters = 20;
   // A state whose max |v| exceeds this is a divergence [m/s].
   double runaway_speed = 1e4;
+  // Solver of the step matrices (integrators/sparse_solver.h).
+  LinearSolverMethod linear_solver = LinearSolverMethod::automatic;
 };
 
 // One accepted step, for metrics and progress.
@@ -90,6 +97,10 @@ class Integrator {
   // y = (q, v): stores and checks the state, lets the model update its
   // history and reports the step.
   StepResult accept_step_state(double t_new, const double* y, long nonlinear_iters, double wall_s);
+  // The options of the step matrix solver for this model (opt_ and the model's asymmetric terms).
+  SparseSolver::Options step_solver_options() const;
+  // Copies a step matrix solver's statistics into stats_.
+  void record_solver(const SparseSolver& solver);
   // The free check_state below, preceded by the model's own rule for states it
   // cannot represent (Outcome::invalid_state with the model's message).
   StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) const;

@@ -43,7 +43,8 @@ struct ReducedLinearSolverOps {
 };
 
 ReducedLinearSolver::ReducedLinearSolver(SUNContext ctx, Model& model, unsigned filter, bool constant_mass,
-                                         SetupQuery query, Staleness stale, SolutionScale scale)
+                                         const SparseSolver::Options& solver, SetupQuery query, Staleness stale,
+                                         SolutionScale scale)
     : model_(model),
       filter_(filter),
       constant_mass_(constant_mass),
@@ -54,7 +55,7 @@ ReducedLinearSolver::ReducedLinearSolver(SUNContext ctx, Model& model, unsigned 
       fixed_(model.fixed_dofs().begin(), model.fixed_dofs().end()),
       pinned_(model.num_dofs(), 0),
       s_(model.pattern()),
-      solver_(model.pattern(), model.fixed_dofs()) {
+      solver_(model.pattern(), model.fixed_dofs(), solver) {
   for (int i : fixed_) pinned_[i] = 1;
   // Newton corrections (and ARKODE's exact-mass solves of a well-conditioned
   // M) need no iterative refinement: one forward/back substitution each.
@@ -145,7 +146,7 @@ bool ReducedLinearSolver::solve(const double* b, double* x) {
     if (!c_.mass_times_bv) r_.noalias() -= c_.m * (*mass_ * u_);
     if (c_.d != 0.0) r_.noalias() += c_.d * (ev_.dfdv * u_);
   }
-  solver_.solve(r_, xv_);  // zero on pinned DoFs
+  if (!solver_.solve(r_, xv_)) return false;  // zero on pinned DoFs
   for (int i = 0; i < n; ++i) {
     if (pinned_[i]) {
       xq[i] = wq_[i];

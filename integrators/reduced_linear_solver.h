@@ -2,8 +2,8 @@
 // IDA and ARKODE form for a second-order system in y = (q, v). It never forms
 // the block matrix: every solve is ONE n×n sparse solve with the
 // backward-Euler-shaped matrix S = m·M − d·∂f/∂v − (k·β/α)·∂f/∂q on the free
-// DoFs (integrators/sparse_solver.h, UMFPACK; symbolic analysis once, pinned
-// DoFs eliminated).
+// DoFs (integrators/sparse_solver.h, the method the run chose; symbolic
+// analysis once, pinned DoFs eliminated).
 //
 // The block system, on the rows of free DoFs, is
 //   [ α I      −β I        ] [x_q]   [b_q]
@@ -69,9 +69,11 @@ class ReducedLinearSolver {
   using SolutionScale = std::function<double()>;
 
   // `filter` restricts K and D to a term subset (kImplicitTerms for IMEX);
-  // M is always the full mass. `constant_mass`: evaluate M once.
-  ReducedLinearSolver(SUNContext ctx, Model& model, unsigned filter, bool constant_mass, SetupQuery query,
-                      Staleness stale = {}, SolutionScale scale = {});
+  // M is always the full mass. `constant_mass`: evaluate M once. `solver`:
+  // the sparse solver's method and what the model says of the matrix.
+  ReducedLinearSolver(SUNContext ctx, Model& model, unsigned filter, bool constant_mass,
+                      const SparseSolver::Options& solver, SetupQuery query, Staleness stale = {},
+                      SolutionScale scale = {});
   ~ReducedLinearSolver();
   ReducedLinearSolver(const ReducedLinearSolver&) = delete;
   ReducedLinearSolver& operator=(const ReducedLinearSolver&) = delete;
@@ -84,6 +86,7 @@ class ReducedLinearSolver {
   long setups() const { return setups_; }  // numeric factorizations (and Jacobian evaluations)
   long solves() const { return solves_; }
   const SparseMatrix& matrix() const { return s_; }  // the last factorized n×n matrix
+  const SparseSolver& sparse_solver() const { return solver_; }
 
  private:
   Model& model_;

@@ -84,6 +84,18 @@ StepResult Integrator::accept_step_state(double t_new, const double* y, long non
   return r;
 }
 
+SparseSolver::Options Integrator::step_solver_options() const {
+  return {opt_.linear_solver, model_->asymmetric_terms()};
+}
+
+void Integrator::record_solver(const SparseSolver& solver) {
+  const SparseSolver::Statistics& s = solver.statistics();
+  stats_.factorizations = s.factorizations;
+  stats_.krylov_iters = s.krylov_iterations;
+  stats_.step_matrix_asymmetry = s.max_asymmetry;
+  stats_.linear_solver = solver.description();
+}
+
 std::vector<std::string> integrator_names() {
   return {"be-linear", "be-newton", "ida", "arkode-erk", "arkode-dirk", "arkode-imex", "symplectic"};
 }

@@ -1,9 +1,24 @@
-// Sparse direct solver for the implicit step matrix with pinned DoFs removed.
-// The symbolic analysis is done once per pattern (at the first factorize, on
-// real values); every later factorize() reuses it.
-// Backends: UMFPACK (general, the default since the yarn step matrix is not
-// symmetric, docs/models.md §7.6) and CHOLMOD (symmetric positive definite).
+// Sparse solver for the implicit step matrix with pinned DoFs removed
+// (docs/design.md §6.3). The method is chosen by the matrix:
+//   cholmod  CHOLMOD LLᵀ (supernodal or simplicial as CHOLMOD judges by the
+//            flop count, METIS ordering): only for a matrix the model declares
+//            symmetric; refused otherwise;
+//   umfpack  UMFPACK LU (symmetric strategy, METIS ordering): any matrix;
+//   gmres    restarted GMRES on the true matrix A, right-preconditioned by a
+//            CHOLMOD factor of the symmetric part S = (A + Aᵀ)/2 (the LU of A
+//            when S is not positive definite). The factor is kept over later
+//            matrices and rebuilt when a solve needed more than kRefactorIterations
+//            Arnoldi steps or kMaxReuse matrices have passed; a solve that does
+//            not converge with a kept factor is retried with a fresh one.
+//            Stops at ‖b − A x‖ ≤ kGmresTolerance ‖b‖.
+//   auto     cholmod for a symmetric matrix (umfpack when it is not positive
+//            definite), umfpack for small systems, gmres for larger nearly
+//            symmetric ones (measured ‖A − Aᵀ‖_F / ‖A‖_F below kNearlySymmetric),
+//            umfpack otherwise.
+// The symbolic analyses are done once (at the first matrix, on real values).
+// Sparse indices passed to SuiteSparse are 64-bit (umfpack_dl, cholmod_l).
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -13,34 +28,84 @@
 
 namespace wl {
 
+enum class LinearSolverMethod { automatic, umfpack, cholmod, gmres };
+// Names in documentation order: auto, umfpack, cholmod, gmres.
+std::vector<std::string> linear_solver_names();
+const char* to_string(LinearSolverMethod m);
+// Throws std::invalid_argument for an unknown name.
+LinearSolverMethod parse_linear_solver(const std::string& name);
+
+// Relative residual the gmres method reaches (the direct methods reach ~1e-14).
+constexpr double kGmresTolerance = 1e-10;
+
+struct SparseSolverOptions {
+  LinearSolverMethod method = LinearSolverMethod::umfpack;
+  // What the model says of the matrix (Model::asymmetric_terms()): empty =
+  // symmetric; else the terms whose Jacobians break symmetry.
+  std::vector<std::string> asymmetric_terms = {"unknown"};
+};
+
 class SparseSolver {
  public:
-  enum class Backend { umfpack, cholmod };
+  using Options = SparseSolverOptions;
+  struct Statistics {
+    long updates = 0;         // matrices given to factorize()
+    long factorizations = 0;  // numeric factorizations (of A or of S)
+    long solves = 0;
+    long krylov_iterations = 0;
+    double max_asymmetry = 0.0;  // max ‖A − Aᵀ‖_F / ‖A‖_F over the matrices seen
+  };
+
   // `pattern` is the full matrix pattern; `fixed` the DoFs to eliminate.
-  SparseSolver(const SparseMatrix& pattern, std::span<const int> fixed, Backend backend = Backend::umfpack);
+  // Throws std::invalid_argument when `options.method` is cholmod and the
+  // matrix is not declared symmetric.
+  SparseSolver(const SparseMatrix& pattern, std::span<const int> fixed, Options options = {});
   ~SparseSolver();
   SparseSolver(const SparseSolver&) = delete;
   SparseSolver& operator=(const SparseSolver&) = delete;
 
-  // Numeric factorization of A restricted to the free DoFs. Returns false if singular.
+  // Takes A (pattern()-shaped) restricted to the free DoFs as the matrix of
+  // every later solve, and factorizes it as the method needs. Returns false
+  // when it cannot be solved with (failure() says why).
   bool factorize(const SparseMatrix& a);
-  // Solves A x = b on the free DoFs; x is zero on fixed DoFs.
-  void solve(const Vec& b, Vec& x) const;
+  // Solves A x = b with the matrix last given to factorize(), on the free DoFs
+  // (x is zero on fixed DoFs), to the method's accuracy: direct, or
+  // ‖b − A x‖ ≤ kGmresTolerance ‖b‖ on the free rows for gmres. Returns false
+  // (failure() says why) when gmres does not get there. Const: what gmres
+  // refreshes (its preconditioner) is a cache of the same matrix.
+  bool solve(const Vec& b, Vec& x) const;
   int num_free() const { return static_cast<int>(free_.size()); }
   // UMFPACK's iterative refinement steps per solve (its default: up to 2).
   // Inside a Newton iteration the iteration itself refines: 0 saves the
   // residual and the extra triangular solves.
   void set_refinement_steps(int steps);
-  Backend backend() const { return backend_; }
+
+  LinearSolverMethod requested() const { return options_.method; }
+  // The method in use (never automatic after the first factorize()).
+  LinearSolverMethod method() const { return method_; }
+  // Method, backend and ordering as recorded in run summaries.
+  std::string description() const;
+  const Statistics& statistics() const { return stats_; }
+  const std::string& failure() const { return failure_; }
 
  private:
   struct Impl;
-  Backend backend_;
-  std::vector<int> free_;        // reduced index -> full index
-  std::vector<int> value_map_;   // reduced nnz -> full nnz
-  SparseMatrix reduced_;
+  using Index64 = std::int64_t;
+  void choose_method();
+  bool factor_preconditioner() const;
+  bool factor_lu() const;
+  bool factor_cholesky(bool symmetric_part) const;
+  bool gmres_solve(const Vec& rb, Vec& rx) const;
+
+  Options options_;
+  LinearSolverMethod method_;
+  std::vector<int> free_;                // reduced index -> full index
+  std::vector<Index64> value_map_;       // reduced nnz -> full nnz
+  std::vector<Index64> transpose_map_;   // reduced nnz -> nnz of the transposed entry
+  Eigen::SparseMatrix<double, Eigen::ColMajor, Index64> reduced_;  // A on the free DoFs
   std::unique_ptr<Impl> impl_;
-  bool analyzed_ = false;
+  mutable Statistics stats_;
+  mutable std::string failure_;
   mutable Vec rb_, rx_;
 };
 

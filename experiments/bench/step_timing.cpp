@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "experiments/driver/memory_estimate.h"
 #include "experiments/driver/model_factory.h"
 #include "integrators/backward_euler.h"
 #include "integrators/sparse_solver.h"
@@ -37,7 +38,7 @@ double Timing::mean_wall_ms() const {
 }
 
 Figures measure(const Scene& scene, const std::string& model_name, const std::string& integrator, int warmup,
-                int steps, bool parts) {
+                int steps, bool parts, LinearSolverMethod method) {
   Figures fig;
   fig.model = model_name;
   fig.parts = parts;
@@ -45,6 +46,7 @@ Figures measure(const Scene& scene, const std::string& model_name, const std::st
   BackwardEuler be(integrator == "be-newton" ? BackwardEuler::Variant::newton : BackwardEuler::Variant::linear);
   IntegratorOptions opt;
   opt.dt = scene.dt_s;
+  opt.linear_solver = method;
   be.initialize(*model, 0.0, model->initial_q(), model->initial_v(), opt);
   fig.dofs = model->num_dofs();
   fig.nnz = static_cast<long>(model->pattern().nonZeros());
@@ -56,25 +58,43 @@ Figures measure(const Scene& scene, const std::string& model_name, const std::st
   };
   for (int k = 0; k < warmup; ++k) checked_step();
 
+  const SparseMatrix& a = be.step_matrix();
   SparseSolver solver(model->pattern(), model->fixed_dofs());
+  SparseSolver reference(model->pattern(), model->fixed_dofs(), {LinearSolverMethod::cholmod, {}});
+  SparseMatrix sym = model->pattern();
+  auto form_sym = [&] { sym = 0.5 * (a + SparseMatrix(a.transpose())); };  // same pattern: A is structurally symmetric
   const Vec b = Vec::Ones(fig.dofs);
   Vec x;
   Evaluation ev;
   allocate_evaluation(*model, ev);
-  if (parts && warmup > 0) {  // symbolic analysis (and a first numeric factorization), untimed
-    solver.factorize(be.step_matrix());
+  if (parts && warmup > 0) {  // symbolic analyses (and first numeric factorizations), untimed
+    solver.factorize(a);
     solver.solve(b, x);
+    form_sym();
+    reference.factorize(sym);
+    reference.solve(b, x);
   }
+  const SparseSolver::Statistics before = be.solver().statistics();
   for (int k = 0; k < steps; ++k) {
     fig.step.time(checked_step);
     if (!parts) continue;
     fig.factor_solve.time([&] {
-      if (!solver.factorize(be.step_matrix())) throw std::runtime_error(model_name + ": singular step matrix");
+      if (!solver.factorize(a)) throw std::runtime_error(model_name + ": " + solver.failure());
       solver.solve(b, x);
+    });
+    form_sym();
+    fig.cholmod_reference.time([&] {
+      if (!reference.factorize(sym)) throw std::runtime_error(model_name + ": (A + Aᵀ)/2: " + reference.failure());
+      reference.solve(b, x);
     });
     fig.assembly.time([&] { model->evaluate(be.t(), be.q(), be.v(), kForce | kDfdq | kDfdv | kMass, ev); });
   }
   fig.steps = steps;
+  const SparseSolver::Statistics& after = be.solver().statistics();
+  fig.solver = be.solver().description();
+  fig.factorizations_per_step = double(after.factorizations - before.factorizations) / steps;
+  fig.krylov_per_step = double(after.krylov_iterations - before.krylov_iterations) / steps;
+  fig.peak_mb = peak_resident_bytes() / 1e6;
   return fig;
 }
 

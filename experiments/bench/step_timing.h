@@ -1,12 +1,15 @@
-// One measurement shared by the benchmarks: a model's backward-Euler steps,
-// each followed by the factor+solve of that very step matrix (a second solver,
-// symbolic analysis untimed) and the assembly alone, as wall and process-CPU
-// medians (docs/design.md §11: ratios measured in one run).
+// One measurement shared by the benchmarks: a model's backward-Euler steps
+// with a given linear solver, each followed by two references on that very
+// step matrix A (second solvers, symbolic analyses untimed): the UMFPACK
+// factor+solve of A, and the CHOLMOD LLᵀ factor+solve of its symmetric part
+// (A + Aᵀ)/2 (forming it untimed); then the assembly alone. Wall and
+// process-CPU medians (docs/design.md §11: ratios measured in one run).
 #pragma once
 #include <chrono>
 #include <string>
 #include <vector>
 
+#include "integrators/sparse_solver.h"
 #include "models/scene/scene.h"
 
 namespace wl::bench {
@@ -26,14 +29,17 @@ struct Figures {
   int dofs = 0;
   long nnz = 0;
   int steps = 0;
-  bool parts = false;  // factor+solve and assembly measured
-  Timing step, factor_solve, assembly;
+  bool parts = false;  // references and assembly measured
+  std::string solver;  // the step's solver (SparseSolver::description())
+  double factorizations_per_step = 0.0, krylov_per_step = 0.0;
+  double peak_mb = 0.0;  // peak resident size of the process after the measurement
+  Timing step, factor_solve, cholmod_reference, assembly;  // factor_solve: UMFPACK of A
 };
 
 // `warmup` untimed steps, then `steps` timed ones (with factor+solve and
 // assembly when `parts`). Throws std::runtime_error when a step fails.
 Figures measure(const Scene& scene, const std::string& model_name, const std::string& integrator, int warmup,
-                int steps, bool parts);
+                int steps, bool parts, LinearSolverMethod method = LinearSolverMethod::automatic);
 
 double process_cpu_s();
 

@@ -111,6 +111,9 @@ int main(int argc, char** argv) {
   run->add_option("scene", scene_path, "Scene file (TOML)")->required();
   run->add_option("--model", model, "Model: " + joined(wl::model_names()))->capture_default_str();
   run->add_option("--integrator", integrator, "Integrator (overrides the scene): " + joined(wl::integrator_names()));
+  std::string linear_solver;
+  run->add_option("--linear-solver", linear_solver,
+                  "Step matrix solver (overrides the scene): " + joined(wl::linear_solver_names()));
   run->add_option("--dt", dt, "Time step [s] (overrides the scene)");
   run->add_option("--duration", duration, "Simulated time [s] (overrides the scene)");
   run->add_option("--output-interval", output_interval, "Time between frames [s] (overrides the scene)");
@@ -374,6 +377,7 @@ int main(int argc, char** argv) {
     opt.progress = !quiet;
     wl::RunOverrides ov;
     if (run->count("--integrator")) ov.integrator = integrator;
+    if (run->count("--linear-solver")) ov.linear_solver = linear_solver;
     if (run->count("--dt")) ov.dt_s = dt;
     if (run->count("--duration")) ov.duration_s = duration;
     if (run->count("--output-interval")) ov.output_interval_s = output_interval;

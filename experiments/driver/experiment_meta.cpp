@@ -24,6 +24,10 @@ Json statistics_json(const IntegratorStats& st) {
   s.set("linear_setups", st.linear_setups);
   s.set("linear_solves", st.linear_solves);
   s.set("nonlinear_iters", st.nonlinear_iters);
+  s.set("factorizations", st.factorizations);
+  s.set("krylov_iters", st.krylov_iters);
+  s.set("linear_solver", st.linear_solver);
+  s.set("step_matrix_asymmetry", st.step_matrix_asymmetry);
   s.set("wall_s", st.wall_s);
   s.set("cpu_s", st.cpu_s);
   return s;

@@ -10,6 +10,7 @@
 
 #include "experiments/driver/interrupt.h"
 #include "experiments/driver/model_factory.h"
+#include "experiments/driver/run_settings.h"
 #include "experiments/driver/run_summary.h"
 #include "experiments/output/metrics_csv.h"
 #include "experiments/output/pvd_series.h"
@@ -63,9 +64,12 @@ StepResult interrupted_result() {
 }  // namespace
 
 RunReport run_scene(const Scene& scene, const RunOptions& options) {
+  check_run_memory(scene, options.model);
   auto model = make_model(scene, options.model);
+  check_linear_solver(scene, *model, options.overrides);
   auto integrator = make_integrator(scene.integrator);
   IntegratorOptions iopt;
+  iopt.linear_solver = parse_linear_solver(scene.linear_solver);
   iopt.dt = scene.dt_s;
   iopt.adaptive = scene.adaptive;
   iopt.rtol = scene.rtol;

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <limits>
 
+#include "experiments/driver/memory_estimate.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_material.h"
 
@@ -16,6 +18,9 @@ std::string shortest(double x) {
   return std::string(buf, res.ptr);
 }
 
+// Bound on the step matrix's entries per DoF (the yarn grid has about 37).
+constexpr int kMaxPatternEntriesPerDof = 64;
+
 // Scene key → (command-line option, key in the override record).
 struct Overridable {
   const char* key;
@@ -26,6 +31,7 @@ constexpr Overridable kOverridable[] = {
     {"time.duration_s", "--duration", "duration_s"}, {"time.dt_s", "--dt", "dt_s"},
     {"time.output_interval_s", "--output-interval", "output_interval_s"}, {"time.rtol", "--rtol", "rtol"},                 {"time.atol", "--rtol", "rtol"},
     {"time.integrator", "--integrator", "integrator"}, {"time.adaptive", "--adaptive", "adaptive"},
+    {"time.linear_solver", "--linear-solver", "linear_solver"},
 };
 
 const Overridable* overridden(const std::string& key, const std::map<std::string, std::string>& record) {
@@ -60,12 +66,48 @@ void check_run_settings(const Scene& scene, const std::map<std::string, std::str
     for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
     fail(scene, record, "time.integrator", "\"" + scene.integrator + "\"", "one of " + known);
   }
+  const auto solvers = linear_solver_names();
+  if (std::find(solvers.begin(), solvers.end(), scene.linear_solver) == solvers.end()) {
+    std::string known;
+    for (const auto& n : solvers) known += (known.empty() ? "" : ", ") + n;
+    fail(scene, record, "time.linear_solver", "\"" + scene.linear_solver + "\"", "one of " + known);
+  }
+}
+
+void check_linear_solver(const Scene& scene, const Model& model, const std::map<std::string, std::string>& record) {
+  const auto terms = model.asymmetric_terms();
+  if (scene.linear_solver != "cholmod" || terms.empty()) return;
+  std::string names;
+  for (const auto& t : terms) names += (names.empty() ? "" : ", ") + t;
+  fail(scene, record, "time.linear_solver", "\"cholmod\"",
+       "auto, umfpack or gmres: cholmod needs a symmetric step matrix and this " + model.name() +
+           " model's is not (terms " + names + ")");
+}
+
+void check_run_memory(const Scene& scene, const std::string& model_name) {
+  const MemoryEstimate e = estimate_run_memory(scene, model_name);
+  const double available = available_memory_bytes();
+  const std::string value = std::to_string(scene.warps) + " (× " + std::to_string(scene.wefts) + " wefts)";
+  const auto gb = [](double b) { return shortest(std::round(b / 1e8) / 10.0) + " GB"; };
+  if (e.bytes > available)
+    fail(scene, {}, "cloth.warps", value,
+         "a cloth that fits in memory: the " + model_name + " model has " + std::to_string(e.dofs) +
+             " DoFs and needs about " + gb(e.bytes) + ", " + gb(available) + " available");
+  // The model's sparsity pattern has 32-bit indices (the factorizations' are 64-bit).
+  if (static_cast<double>(e.dofs) * kMaxPatternEntriesPerDof > std::numeric_limits<int>::max())
+    fail(scene, {}, "cloth.warps", value,
+         "at most " + std::to_string(std::numeric_limits<int>::max() / kMaxPatternEntriesPerDof) +
+             " DoFs (32-bit sparse pattern); the " + model_name + " model has " + std::to_string(e.dofs));
 }
 
 void apply_run_overrides(Scene& scene, const RunOverrides& o, std::map<std::string, std::string>& record) {
   if (o.integrator) {
     scene.integrator = *o.integrator;
     record["integrator"] = *o.integrator;
+  }
+  if (o.linear_solver) {
+    scene.linear_solver = *o.linear_solver;
+    record["linear_solver"] = *o.linear_solver;
   }
   if (o.dt_s) {
     scene.dt_s = *o.dt_s;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/core/model.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -23,7 +24,7 @@ class SettingError : public std::invalid_argument {
 
 // Overrides of `weavelab run` (absent = the scene's value).
 struct RunOverrides {
-  std::optional<std::string> integrator;
+  std::optional<std::string> integrator, linear_solver;
   std::optional<double> dt_s, duration_s, output_interval_s, rtol;  // --rtol implies adaptive, atol = 1e-3 rtol
   bool adaptive = false;
   std::optional<std::string> fem_parameter_file;  // --fem-params: replaces [fem] parameter_file
@@ -38,6 +39,15 @@ void apply_run_overrides(Scene& scene, const RunOverrides& overrides, std::map<s
 // violated rule names the command-line option when `record` holds its key
 // (SettingError), else the scene's file and line (SceneError).
 void check_run_settings(const Scene& scene, const std::map<std::string, std::string>& record);
+
+// The scene's linear solver for this model: cholmod only where the model's
+// step matrix is symmetric (SceneError or SettingError otherwise).
+void check_linear_solver(const Scene& scene, const Model& model, const std::map<std::string, std::string>& record);
+
+// Refuses (SceneError at [cloth] warps) a run of `model_name` whose memory
+// estimate (memory_estimate.h) exceeds the memory available, before anything
+// is allocated; the message gives the estimate.
+void check_run_memory(const Scene& scene, const std::string& model_name);
 
 // --duration of the experiments: the same rules, recorded as "duration_s".
 void apply_duration_override(Scene& scene, double duration_s, std::map<std::string, std::string>& record);

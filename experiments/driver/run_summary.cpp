@@ -1,6 +1,7 @@
 #include "experiments/driver/run_summary.h"
 
 #include "experiments/driver/experiment_meta.h"
+#include "experiments/driver/memory_estimate.h"
 #include "experiments/driver/sweep.h"
 #include "experiments/output/atomic_file.h"
 
@@ -24,6 +25,12 @@ void write_run_summary(const std::filesystem::path& path, const Scene& scene, co
   }
   j.set("integrator", in);
   j.set("statistics", statistics_json(report.stats));
+  Json mem = Json::object();
+  const double peak = peak_resident_bytes();
+  mem.set("peak_resident_bytes", peak);
+  mem.set("peak_bytes_per_dof", peak / std::max(1, model.num_dofs()));
+  mem.set("estimate_bytes", estimate_run_memory(scene, options.model).bytes);
+  j.set("memory", mem);
   Json out = Json::object();
   out.set("outcome", to_string(report.result.outcome));
   out.set("message", report.result.message);

@@ -99,6 +99,7 @@ void Assembly::add_stage(int stage, const Vec& q, const Vec& v, const Vec& const
     if (plan.term->stage() != stage) continue;
     if (req.filter == TermFilter::explicit_only && !plan.term->imex_explicit()) continue;
     if (req.filter == TermFilter::implicit_only && plan.term->imex_explicit()) continue;
+    if (req.filter == TermFilter::mass_only && !plan.term->provides_mass()) continue;
     add_term(plan, q, v, constants, req, f, dfdq, dfdv, mass);
   }
 }
@@ -116,7 +117,8 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
   double* mv = want_m ? mass->valuePtr() : nullptr;
 
   auto run_range = [&](int begin, int end) {
-    std::vector<double> buf(static_cast<size_t>(3 * n + 3 * n * n));  // q, v, f; dfdq, dfdv, mass
+    thread_local std::vector<double> buf;  // q, v, f; dfdq, dfdv, mass (kept: no allocation per evaluation)
+    buf.resize(static_cast<size_t>(3 * n + 3 * n * n));
     double* ql = buf.data();
     double* vl = ql + n;
     double* fl = vl + n;

@@ -13,8 +13,9 @@
 
 namespace wl {
 
-// Which terms contribute (IMEX split, Term::imex_explicit()).
-enum class TermFilter { all, explicit_only, implicit_only };
+// Which terms contribute (IMEX split, Term::imex_explicit(); mass_only: the
+// terms that provide mass, for M(q) alone).
+enum class TermFilter { all, explicit_only, implicit_only, mass_only };
 
 struct AssemblyRequest {
   bool dfdq = false;

@@ -46,9 +46,14 @@ class Model {
   // Whether M depends on q (then f contains ∂T/∂q − Ṁq̇, docs/models.md §3.1.2).
   virtual bool mass_depends_on_q() const = 0;
 
+  // The terms whose Jacobians make the step matrix M − hD − h²K non-symmetric
+  // (docs/design.md §6.3), e.g. inertia, friction, wind; empty: symmetric.
+  virtual std::vector<std::string> asymmetric_terms() const = 0;
+
   // Sparsity shared by mass, dfdq and dfdv (fixed for the model's lifetime).
   virtual const SparseMatrix& pattern() const = 0;
-  // Fills what `flags` asks for; matrices keep pattern()'s structure.
+  // Fills what `flags` asks for; matrices keep pattern()'s structure. With
+  // kMass alone only M(q) is formed (the force is then not meaningful).
   virtual void evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) = 0;
   // Potential energy of the conservative terms.
   virtual double potential_energy(const Vec& q) const = 0;

@@ -45,6 +45,10 @@ class Term {
   virtual bool provides_mass() const { return false; }          // writes mass
   // 0: evaluated first; 1: evaluated after the stage-0 force is assembled.
   virtual int stage() const { return 0; }
+  // Whether the term's ∂f/∂q and ∂f/∂v keep the step matrix M − hD − h²K
+  // symmetric (docs/design.md §6.3): true for a potential's force (K = −∇²E)
+  // that reads nothing frozen from the force of stage 0.
+  virtual bool symmetric_jacobian() const { return conservative() && !has_velocity_jacobian() && stage() == 0; }
   // IMEX split (arkode-imex): true for non-stiff external forces (gravity,
   // wind) that an additive Runge–Kutta method treats explicitly.
   virtual bool imex_explicit() const { return false; }

@@ -31,11 +31,16 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
   AssemblyRequest req{(flags & kDfdq) != 0, (flags & kDfdv) != 0, (flags & kMass) != 0};
   if (flags & kExplicitTerms) req.filter = TermFilter::explicit_only;
   else if (flags & kImplicitTerms) req.filter = TermFilter::implicit_only;
+  else if (flags == kMass) req.filter = TermFilter::mass_only;
   auto zero = [](SparseMatrix& m) { std::fill(m.valuePtr(), m.valuePtr() + m.nonZeros(), 0.0); };
   if (req.dfdq) zero(out.dfdq);
   if (req.dfdv) zero(out.dfdv);
   if (req.mass) zero(out.mass);
 
+  if (req.filter == TermFilter::mass_only) {  // M(q) alone: no auxiliaries, only the mass terms (stage 0)
+    assembly_->add_stage(0, q, v, constants_, req, out.force, nullptr, nullptr, &out.mass);
+    return;
+  }
   update_auxiliary(t, q, v);
   EvalContext ctx{t, &q, &v, nullptr};
   bool has_stage1 = false;
@@ -66,6 +71,14 @@ std::vector<std::string> TermModel::parameter_keys() const {
     for (const std::string& k : term->parameter_keys())
       if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
   return keys;
+}
+
+std::vector<std::string> TermModel::asymmetric_terms() const {
+  std::vector<std::string> names;
+  for (const auto& term : terms_)
+    if (!term->symmetric_jacobian() && std::find(names.begin(), names.end(), term->name()) == names.end())
+      names.push_back(term->name());
+  return names;
 }
 
 bool TermModel::force_parameter_derivative(const std::string& key, double, const Vec& q, const Vec& v, Vec& dfdp) {

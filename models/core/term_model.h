@@ -20,6 +20,7 @@ class TermModel : public Model {
   double potential_energy(const Vec& q) const override;
   void accept_step(double t, const Vec& q, const Vec& v, double h) override;
   std::vector<std::string> parameter_keys() const override;
+  std::vector<std::string> asymmetric_terms() const override;
   bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v, Vec& dfdp) override;
   bool mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, Vec& out) const override;
   void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const override;

@@ -38,6 +38,7 @@
 //     duration_s, dt_s, output_interval_s > 0 with dt_s ≤ output_interval_s ≤ duration_s,
 //     at most 1e7 fixed steps (duration_s / dt_s) and 1e5 frames (time_settings_violation)
 //     integrator (non-empty string; the run checks the name), adaptive (bool)
+//     linear_solver (non-empty string; the run checks the name)
 //     rtol in (0, 1), atol > 0
 //   [terms]       stretch, bending, shear, parallel_contact, friction, gravity, wind,
 //                 handles, inertia (bools)
@@ -171,6 +172,9 @@ void read_cloth(TableReader& top, Scene& s, const std::map<std::string, YarnType
     c->read_string_array("weft_yarn_types", s.weft_yarn_types, names_expected);
     if (auto p = c->subtable("pattern")) read_pattern(*p, s);
     c->finish();
+    s.key_lines["cloth"] = c->line();  // the size is checked against memory at run time
+    for (const char* k : {"warps", "wefts"})
+      if (auto v = c->table()[k]) s.key_lines[c->key_path(k)] = line_of(*v.node());
   }
 
   // Every referenced name must exist; "default" exists implicitly.
@@ -324,6 +328,8 @@ void read_time(TableReader& top, Scene& s) {
     t->read_string("integrator", s.integrator, "a non-empty integrator name (string)",
                    [](const std::string& x) { return !x.empty(); });
     t->read_bool("adaptive", s.adaptive);
+    t->read_string("linear_solver", s.linear_solver, "a non-empty linear solver name (string)",
+                   [](const std::string& x) { return !x.empty(); });
     t->read_number("rtol", s.rtol, "a number > 0 and < 1", [](double x) { return x > 0.0 && x < 1.0; });
     t->read_number("atol", s.atol, "a number > 0", positive);
     t->finish();

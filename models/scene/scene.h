@@ -101,6 +101,7 @@ struct Scene {
   double dt_s = 1e-3;
   double output_interval_s = 0.01;
   std::string integrator = "be-linear";
+  std::string linear_solver = "auto";  // step matrix solver (integrators/sparse_solver.h); the run checks the name
   bool adaptive = false;
   double rtol = 1e-6, atol = 1e-9;
 

@@ -191,6 +191,9 @@ TEST_F(Cli, EveryBadInputIsALocatedExit2) {
       {"--rtol nan", "", "", "", "'--rtol'"},
       {"--integrator foo", "", "", "", "'--integrator'"},
       {"--integrator ''", "", "", "", "'--integrator'"},
+      {"--linear-solver lu", "", "", "", "'--linear-solver'"},
+      {"--linear-solver cholmod", "", "", "", "'--linear-solver'"},  // the yarn step matrix is not symmetric
+      {"", "[cloth]\nwarps = 16384\nwefts = 16384\n", "", "", "bad.toml:2"},  // cannot fit in memory
       {"--out ''", "", "", "", "'--out'"},
       {"--model cloth", "", "", "", "cloth"},
       {"--dt abc", "", "", "", "--dt"},

@@ -3,6 +3,7 @@
 
 #include <limits>
 
+#include "experiments/driver/memory_estimate.h"
 #include "experiments/driver/run_settings.h"
 
 namespace wl {
@@ -114,6 +115,50 @@ TEST(RunSettings, ExperimentOptions) {
   EXPECT_THROW(output_folder(std::string(), "fallback"), SettingError);
   EXPECT_EQ(output_folder(std::nullopt, "fallback"), "fallback");
   EXPECT_EQ(output_folder(std::string("x"), "fallback"), "x");
+}
+
+}  // namespace
+}  // namespace wl
+
+namespace wl {
+namespace {
+
+TEST(RunSettings, LinearSolverIsCheckedLikeTheOtherSettings) {
+  RunOverrides o;
+  o.linear_solver = "cholesky";
+  const std::string msg = rejection(o);
+  EXPECT_NE(msg.find("option '--linear-solver': got \"cholesky\", expected one of auto, umfpack, cholmod, gmres"),
+            std::string::npos)
+      << msg;
+  Scene s = parse_scene(kScene + "linear_solver = \"lu\"\n", "s.toml");
+  try {
+    check_run_settings(s, {});
+    FAIL() << "unknown linear solver accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("s.toml:7"), std::string::npos) << e.what();
+  }
+}
+
+TEST(RunSettings, AClothThatCannotFitIsRefusedWithItsEstimate) {
+  Scene s = parse_scene("[cloth]\nwarps = 16384\nwefts = 16384\n", "big.toml");
+  try {
+    check_run_memory(s, "yarn");
+    FAIL() << "a 16384×16384 cloth was accepted";
+  } catch (const SceneError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("big.toml:2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("1342046216 DoFs and needs about"), std::string::npos) << msg;
+    EXPECT_NE(msg.find(" GB available"), std::string::npos) << msg;
+  }
+  Scene small = parse_scene(kScene, "s.toml");
+  EXPECT_NO_THROW(check_run_memory(small, "yarn"));
+  Scene s65 = parse_scene("[cloth]\nwarps = 65\nwefts = 65\n", "a.toml"), s257 = s65;
+  s257.warps = s257.wefts = 257;
+  EXPECT_EQ(estimate_run_memory(s65, "yarn").dofs, 20613);  // README: the 65×65 cloth
+  // The 257×257 cloth: its DoFs, and an estimate above the peak measured with umfpack (5.15 GB, README).
+  const MemoryEstimate e257 = estimate_run_memory(s257, "yarn");
+  EXPECT_EQ(e257.dofs, 328197);
+  EXPECT_GT(e257.bytes, 5.15e9);
 }
 
 }  // namespace

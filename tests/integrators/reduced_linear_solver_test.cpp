@@ -77,7 +77,7 @@ TEST(ReducedLinearSolver, SolvesTheBlockSystemsOfIdaAndArkode) {
     ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
     {
       const C coeff = c;
-      ReducedLinearSolver ls(ctx, f.net, 0u, false, [&](double& t, const double*& y, C& out) {
+      ReducedLinearSolver ls(ctx, f.net, 0u, false, SparseSolver::Options{}, [&](double& t, const double*& y, C& out) {
         t = 0.0;
         y = f.y.data();
         out = coeff;
@@ -130,7 +130,7 @@ TEST(ReducedLinearSolver, SolvesTheExplicitFormNewtonSystem) {
   SUNContext ctx = nullptr;
   ASSERT_EQ(SUNContext_Create(nullptr, &ctx), 0);
   {
-    ReducedLinearSolver ls(ctx, f.net, 0u, false, [&](double& t, const double*& y, C& out) {
+    ReducedLinearSolver ls(ctx, f.net, 0u, false, SparseSolver::Options{}, [&](double& t, const double*& y, C& out) {
       t = 0.0;
       y = f.y.data();
       out = c;
