@@ -33,9 +33,9 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   if (!ctx_) ctx_ = sun::make_context();
   y_ = sun::make_vector(2 * n_, ctx_.get());
   yp_ = sun::make_vector(2 * n_, ctx_.get());
-  Eigen::Map<Vec> y(sun::data(y_.get()), 2 * n_), yp(sun::data(yp_.get()), 2 * n_);
-  y << q_, v_;
-  yp << v_, a0;
+  Eigen::Map<Vec> y0(sun::data(y_.get()), 2 * n_), yp0(sun::data(yp_.get()), 2 * n_);
+  y0 << q_, v_;
+  yp0 << v_, a0;
 
   mem_ = sun::IdaMemory(IDACreate(ctx_.get()));
   void* m = mem_.get();
