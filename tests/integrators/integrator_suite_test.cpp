@@ -275,8 +275,8 @@ TEST_P(IntegratorSuite, StateDependentMassConservesEnergyOrIsNotOffered) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, IntegratorSuite, ::testing::ValuesIn(integrator_names()),
-                         [](const auto& info) {
-                           std::string s = info.param;
+                         [](const auto& param_info) {
+                           std::string s = param_info.param;
                            for (char& c : s)
                              if (c == '-') c = '_';
                            return s;
