@@ -61,7 +61,7 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   void* m = mem_.get();
   auto check = [&](int flag, const char* what) {
     if (flag < 0)
-      throw std::runtime_error(name() + ": " + what + " failed: " + ARKStepGetReturnFlagName(flag) +
+      throw std::runtime_error(name() + ": " + what + " failed: " + sun::flag_name(ARKStepGetReturnFlagName(flag)) +
                                (last_error_.empty() ? "" : " (" + last_error_ + ")"));
   };
   check(ARKStepSetErrHandlerFn(m, &ArkodeIntegrator::error_handler, this), "ARKStepSetErrHandlerFn");
@@ -242,8 +242,8 @@ StepResult ArkodeIntegrator::failure(int flag) {
   if (!y.allFinite() || flag == ARK_RHSFUNC_FAIL || flag == ARK_REPTD_RHSFUNC_ERR ||
       flag == ARK_FIRST_RHSFUNC_ERR || flag == ARK_UNREC_RHSFUNC_ERR)
     o = Outcome::nan;
-  return {o, name() + " failed with " + ARKStepGetReturnFlagName(flag) + (last_error_.empty() ? "" : ": ") +
-                 last_error_};
+  const std::string flag_name = sun::flag_name(ARKStepGetReturnFlagName(flag));
+  return {o, name() + " failed with " + flag_name + (last_error_.empty() ? "" : ": ") + last_error_, flag, flag_name};
 }
 
 StepResult ArkodeIntegrator::advance_to(double t_out) {

@@ -44,6 +44,13 @@ class ArkodeIntegrator : public Integrator {
   explicit ArkodeIntegrator(Variant variant) : variant_(variant) {}
   ~ArkodeIntegrator() override;
   std::string name() const override;
+  IntegratorCapabilities capabilities() const override {
+    return {.controls_error = true,
+            .fixed_step_order = 4,
+            .explicit_method = variant_ == Variant::erk,
+            .state_dependent_mass = true,
+            .energy = EnergyBehaviour::follows_tolerance};
+  }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
 

@@ -33,9 +33,9 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   if (!ctx_) ctx_ = sun::make_context();
   y_ = sun::make_vector(2 * n_, ctx_.get());
   yp_ = sun::make_vector(2 * n_, ctx_.get());
-  Eigen::Map<Vec> y(sun::data(y_.get()), 2 * n_), yp(sun::data(yp_.get()), 2 * n_);
-  y << q_, v_;
-  yp << v_, a0;
+  Eigen::Map<Vec> y0(sun::data(y_.get()), 2 * n_), yp0(sun::data(yp_.get()), 2 * n_);
+  y0 << q_, v_;
+  yp0 << v_, a0;
 
   mem_ = sun::IdaMemory(IDACreate(ctx_.get()));
   void* m = mem_.get();
@@ -70,7 +70,8 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, !model.mass_depends_on_q(),
                                               step_solver_options(), query, stale, scale);
   auto check = [&](int flag, const char* what) {
-    if (flag < 0) throw std::runtime_error(std::string("ida: ") + what + " failed: " + IDAGetReturnFlagName(flag));
+    if (flag < 0)
+      throw std::runtime_error(std::string("ida: ") + what + " failed: " + sun::flag_name(IDAGetReturnFlagName(flag)));
   };
   check(IDASetErrHandlerFn(m, &IdaIntegrator::error_handler, this), "IDASetErrHandlerFn");
   check(IDAInit(m, &IdaIntegrator::residual, t0, y_.get(), yp_.get()), "IDAInit");
@@ -134,8 +135,8 @@ StepResult IdaIntegrator::failure(int flag) {
   Eigen::Map<const Vec> y(sun::data(y_.get()), 2 * n_);
   if (!y.allFinite() || flag == IDA_RES_FAIL || flag == IDA_REP_RES_ERR || flag == IDA_FIRST_RES_FAIL)
     o = Outcome::nan;
-  return {o, std::string("IDA failed with ") + IDAGetReturnFlagName(flag) + (last_error_.empty() ? "" : ": ") +
-                 last_error_};
+  const std::string flag_name = sun::flag_name(IDAGetReturnFlagName(flag));
+  return {o, "IDA failed with " + flag_name + (last_error_.empty() ? "" : ": ") + last_error_, flag, flag_name};
 }
 
 StepResult IdaIntegrator::advance_to(double t_out) {

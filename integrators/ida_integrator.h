@@ -34,6 +34,10 @@ class IdaIntegrator : public Integrator {
   IdaIntegrator() = default;
   ~IdaIntegrator() override;
   std::string name() const override { return "ida"; }
+  // Variable order (BDF 1–5): no fixed-step mode (see above).
+  IntegratorCapabilities capabilities() const override {
+    return {.controls_error = true, .state_dependent_mass = true, .energy = EnergyBehaviour::follows_tolerance};
+  }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
 

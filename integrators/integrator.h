@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "integrators/sparse_solver.h"
@@ -58,14 +59,41 @@ struct StepRecord {
 };
 
 struct StepResult {
+  StepResult() = default;
+  StepResult(Outcome o, std::string msg, int flag = 0, std::string flag_name = {})
+      : outcome(o), message(std::move(msg)), library_flag(flag), library_flag_name(std::move(flag_name)) {}
+
   Outcome outcome = Outcome::ok;
   std::string message;  // filled when outcome != ok
+  // The return flag of the library that reported the failure (SUNDIALS:
+  // e.g. -4 and "ARK_CONV_FAILURE"); 0 and "" when the failure is not a library's.
+  int library_flag = 0;
+  std::string library_flag_name;
+};
+
+// How a method's energy behaves on an undamped oscillator (docs/design.md §6.1).
+enum class EnergyBehaviour {
+  dissipative,        // decays monotonically (numerical damping: backward Euler)
+  bounded,            // oscillates within O(h) of the initial energy, no drift (symplectic)
+  follows_tolerance,  // conserved to the error tolerance (error-controlled methods)
+};
+
+// What a method is and offers, declared once by each integrator and read by
+// the experiments and the test suite (docs/design.md §6.1).
+struct IntegratorCapabilities {
+  bool controls_error = false;  // adapts its step to rtol/atol (honours IntegratorOptions::adaptive)
+  int fixed_step_order = 0;     // classical order at fixed steps; 0: no fixed-step mode (variable order)
+  bool explicit_method = false;  // no linear solves with the Jacobian; step bounded by stability
+  bool state_dependent_mass = false;  // integrates models whose M depends on q
+  bool sensitivities = false;         // carries forward parameter sensitivities
+  EnergyBehaviour energy = EnergyBehaviour::dissipative;
 };
 
 class Integrator {
  public:
   virtual ~Integrator() = default;
   virtual std::string name() const = 0;
+  virtual IntegratorCapabilities capabilities() const = 0;
   // Binds the model and the initial state (t0, q0, v0).
   virtual void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) = 0;
   // Advances to exactly t_out (stepping or interpolating as the method does).

@@ -10,8 +10,10 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 namespace wl::sun {
@@ -47,6 +49,14 @@ inline Vector make_vector(long n, SUNContext ctx) {
 }
 
 inline double* data(N_Vector v) { return N_VGetArrayPointer(v); }
+
+// A return flag's name from ARKStepGetReturnFlagName / IDAGetReturnFlagName,
+// which hand over a malloc'd string (freed here).
+inline std::string flag_name(char* owned) {
+  std::string s = owned ? owned : "";
+  std::free(owned);
+  return s;
+}
 
 // Integrator memory (IDA or ARKStep): an opaque pointer with its free function.
 template <void (*Free)(void**)>

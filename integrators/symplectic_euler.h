@@ -15,6 +15,12 @@ namespace wl {
 class SymplecticEuler : public Integrator {
  public:
   std::string name() const override { return "symplectic"; }
+  IntegratorCapabilities capabilities() const override {
+    return {.fixed_step_order = 1,
+            .explicit_method = true,
+            .state_dependent_mass = true,
+            .energy = EnergyBehaviour::bounded};
+  }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
   StepResult step(double h);

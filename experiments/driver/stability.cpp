@@ -17,13 +17,12 @@ namespace wl {
 namespace {
 
 // A short name for why a probe was unbounded: the SUNDIALS flag when the
-// message carries one, "runaway" for a speed beyond the bound, "newton" for a
+// library reported the failure, "runaway" for a speed beyond the bound, "newton" for a
 // Newton failure of the in-house methods, else the outcome.
 std::string failure_mode(const StabilityProbe& p) {
   const std::string& msg = p.result.message;
   if (p.result.outcome == Outcome::ok) return p.bounded ? "" : "runaway";
-  const std::string flag = sundials_flag(msg);
-  if (!flag.empty()) return flag;
+  if (!p.result.library_flag_name.empty()) return p.result.library_flag_name;
   if (msg.find("runaway") != std::string::npos || msg.find("exceeds the bound") != std::string::npos) return "runaway";
   if (msg.find("Newton") != std::string::npos) return "newton";
   return to_string(p.result.outcome);
@@ -34,7 +33,7 @@ std::string failure_mode(const StabilityProbe& p) {
 std::vector<std::string> default_stability_integrators() {
   std::vector<std::string> names;
   for (const auto& n : integrator_names())
-    if (n != "ida") names.push_back(n);
+    if (make_integrator(n)->capabilities().fixed_step_order > 0) names.push_back(n);
   return names;
 }
 

@@ -24,8 +24,8 @@ struct StabilityConfig {
   Scene scene;  // with overrides applied
   std::map<std::string, std::string> overrides;
   std::vector<std::string> models = {"yarn", "fem"};
-  // Default: every integrator except ida, which has no fixed-step mode (its
-  // "fixed" mode caps the step at dt but keeps error control).
+  // Default: every integrator with a fixed-step mode (not ida, whose "fixed"
+  // mode caps the step at dt but keeps error control).
   std::vector<std::string> integrators;
   std::vector<double> multipliers = {1, 10, 100, 1000};
   double dt_min = 1e-6, dt_max = 1e-2;

@@ -8,7 +8,6 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -315,14 +314,6 @@ Scene scale_stretch(const Scene& scene, double factor) {
   s.fem.warp_stretch_N_per_m = factor * base.warp_stretch_N_per_m;
   s.fem.weft_stretch_N_per_m = factor * base.weft_stretch_N_per_m;
   return s;
-}
-
-bool is_adaptive_method(const std::string& name) { return name == "ida" || name.rfind("arkode-", 0) == 0; }
-
-std::string sundials_flag(const std::string& message) {
-  static const std::regex flag(R"(\b(ARK|IDA|CV|KIN|SUN)_[A-Z_]+\b)");
-  std::smatch m;
-  return std::regex_search(message, m, flag) ? m.str() : std::string();
 }
 
 std::string read_text_file(const std::filesystem::path& path) {

@@ -36,7 +36,7 @@ struct Trajectory {
 std::vector<double> output_times(const Scene& scene);
 
 struct RecordedRun {
-  StepResult result;           // outcome and message (the SUNDIALS flag name for a SUNDIALS failure)
+  StepResult result;           // outcome, message and, for a SUNDIALS failure, its flag
   IntegratorStats stats;       // the integrator's own statistics
   double cpu_s = 0.0;          // process CPU time of initialize + advance_to (all threads), frames excluded
   double wall_s = 0.0;         // wall time of the same
@@ -152,13 +152,6 @@ StabilityLimit find_stability_limit(const std::function<StabilityProbe(double dt
 // values for the unscaled scene (fem_material: yarn-derived default, parameter
 // file or [fem] table), so both models stiffen equally.
 Scene scale_stretch(const Scene& scene, double factor);
-
-// Whether a method is run with an error-controlled step (ladder of
-// tolerances) rather than fixed steps: ida and arkode-*.
-bool is_adaptive_method(const std::string& integrator_name);
-
-// A SUNDIALS flag name in a message ("ARK_CONV_FAILURE", "IDA_ERR_FAIL", …), or "".
-std::string sundials_flag(const std::string& message);
 
 // Reads a whole text file; throws std::runtime_error naming the path.
 std::string read_text_file(const std::filesystem::path& path);

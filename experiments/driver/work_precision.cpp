@@ -46,7 +46,7 @@ std::vector<std::string> csv_row(const WorkPrecisionRow& r) {
           csv_number(r.atol),
           csv_number(r.dt),
           r.outcome(),
-          sundials_flag(r.run.result.message),
+          r.run.result.library_flag_name,
           r.run.result.message,
           csv_number(r.error.rms),
           csv_number(r.error.max),
@@ -103,7 +103,7 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
       std::fprintf(stderr, "work-precision: WARNING: %s\n", note.c_str());
     }
     for (const std::string& integ : cfg.integrators) {
-      const bool adaptive = is_adaptive_method(integ);
+      const bool adaptive = make_integrator(integ)->capabilities().controls_error;
       std::vector<double> rungs;
       if (adaptive) rungs = cfg.rtols;
       else

@@ -224,12 +224,6 @@ TEST(ScaleStretch, ScalesYarnModuliAndFemStretchOnly) {
   EXPECT_DOUBLE_EQ(b.areal_density_kg_per_m2, a.areal_density_kg_per_m2);
 }
 
-TEST(SundialsFlag, FoundInMessages) {
-  EXPECT_EQ(sundials_flag("arkode-dirk failed with ARK_CONV_FAILURE: ARKODE: At t = 0"), "ARK_CONV_FAILURE");
-  EXPECT_EQ(sundials_flag("ida: IDA_ERR_FAIL at t = 1"), "IDA_ERR_FAIL");
-  EXPECT_EQ(sundials_flag("runaway state: max |v| = 1e5"), "");
-}
-
 // Every CSV line as cells (no quoted commas in the columns read here).
 std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& p) {
   std::vector<std::vector<std::string>> rows;

@@ -14,35 +14,8 @@
 namespace wl {
 namespace {
 
-enum class Energy { dissipative, bounded, accurate };
-
-struct Traits {
-  std::string name;
-  int order;           // classical order at fixed steps (0: adaptive only)
-  bool explicit_method;
-  Energy energy;
-  bool offers_q_dependent_mass;
-  bool adaptive;       // honours IntegratorOptions::adaptive
-};
-
-const std::vector<Traits>& all_traits() {
-  static const std::vector<Traits> t = {
-      {"be-linear", 1, false, Energy::dissipative, true, false},
-      {"be-newton", 1, false, Energy::dissipative, true, false},
-      {"ida", 0, false, Energy::accurate, true, true},
-      {"arkode-erk", 4, true, Energy::accurate, true, true},
-      {"arkode-dirk", 4, false, Energy::accurate, true, true},
-      {"arkode-imex", 4, false, Energy::accurate, true, true},
-      {"symplectic", 1, true, Energy::bounded, true, false},
-  };
-  return t;
-}
-
-const Traits& traits(const std::string& name) {
-  for (auto& t : all_traits())
-    if (t.name == name) return t;
-  throw std::logic_error("no traits for " + name);
-}
+// The method's declared capabilities; the tests below check that each holds.
+IntegratorCapabilities capabilities_of(const std::string& name) { return make_integrator(name)->capabilities(); }
 
 // A chain of 4 unit masses, k = 1 N/m, L = 1 m, g = −1 m/s², displaced.
 std::unique_ptr<test::SpringChain> make_chain(double k = 1.0) {
@@ -83,11 +56,12 @@ double chain_error(test::SpringChain& chain, const RunResult& r, double t) {
 class IntegratorSuite : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(IntegratorSuite, ObservedOrderMatchesMethodOrder) {
-  const Traits& tr = traits(GetParam());
+  const IntegratorCapabilities cap = capabilities_of(GetParam());
   auto chain = make_chain();
   const double T = 2.0;
-  if (tr.order == 0) GTEST_SKIP() << GetParam() << " has no fixed-step mode (see AdaptiveErrorFollowsTolerance)";
-  const double h0 = tr.order == 1 ? T / 200 : T / 20;
+  if (cap.fixed_step_order == 0)
+    GTEST_SKIP() << GetParam() << " has no fixed-step mode (see AdaptiveErrorFollowsTolerance)";
+  const double h0 = cap.fixed_step_order == 1 ? T / 200 : T / 20;
   std::vector<double> hs, errs;
   for (int k = 0; k < 3; ++k) {
     IntegratorOptions opt;
@@ -106,13 +80,13 @@ TEST_P(IntegratorSuite, ObservedOrderMatchesMethodOrder) {
   const double n = hs.size();
   const double order = (n * sxy - sx * sy) / (n * sxx - sx * sx);
   std::printf("[ order ] %-12s observed %.3f (expected %d), errors %.3e %.3e %.3e\n", GetParam().c_str(), order,
-              tr.order, errs[0], errs[1], errs[2]);
-  EXPECT_NEAR(order, tr.order, 0.3);
+              cap.fixed_step_order, errs[0], errs[1], errs[2]);
+  EXPECT_NEAR(order, cap.fixed_step_order, 0.3);
 }
 
 TEST_P(IntegratorSuite, AdaptiveErrorFollowsTolerance) {
-  const Traits& tr = traits(GetParam());
-  if (!tr.adaptive) GTEST_SKIP() << GetParam() << " is fixed-step only";
+  const IntegratorCapabilities cap = capabilities_of(GetParam());
+  if (!cap.controls_error) GTEST_SKIP() << GetParam() << " is fixed-step only";
   auto chain = make_chain();
   const double T = 10.0;
   std::vector<double> errs;
@@ -134,7 +108,7 @@ TEST_P(IntegratorSuite, AdaptiveErrorFollowsTolerance) {
 }
 
 TEST_P(IntegratorSuite, EnergyBehaviour) {
-  const Traits& tr = traits(GetParam());
+  const IntegratorCapabilities cap = capabilities_of(GetParam());
   auto chain = make_chain();
   const double period = 2 * M_PI / chain->max_frequency();  // shortest period
   // Oscillation energy above the static equilibrium (gravity offsets the total).
@@ -143,13 +117,13 @@ TEST_P(IntegratorSuite, EnergyBehaviour) {
   ASSERT_GT(E0, 0.05);
   IntegratorOptions opt;
   opt.dt = period / 50;
-  if (tr.energy == Energy::accurate) {
+  if (cap.energy == EnergyBehaviour::follows_tolerance) {
     opt.adaptive = true;
     opt.rtol = 1e-9;
     opt.atol = 1e-11;
     opt.dt = 1e-3;
   }
-  const int cycles = tr.energy == Energy::bounded ? 200 : 20;
+  const int cycles = cap.energy == EnergyBehaviour::bounded ? 200 : 20;
   auto integ = make_integrator(GetParam());
   integ->initialize(*chain, 0.0, chain->initial_q(), chain->initial_v(), opt);
   std::vector<double> es;
@@ -169,13 +143,13 @@ TEST_P(IntegratorSuite, EnergyBehaviour) {
     for (size_t i = b; i < e; ++i) m += es[i];
     return m / double(e - b);
   };
-  switch (tr.energy) {
-    case Energy::dissipative:
+  switch (cap.energy) {
+    case EnergyBehaviour::dissipative:
       // Backward Euler loses energy, monotonically, by a visible amount.
       EXPECT_TRUE(monotone);
       EXPECT_LT(elast, 0.8 * E0) << "E0 " << E0;
       break;
-    case Energy::bounded: {
+    case EnergyBehaviour::bounded: {
       // Symplectic Euler: the energy oscillates within O(h) of E0 and does not
       // drift over 200 periods of the fastest mode.
       EXPECT_LT(emax, 1.15 * E0) << "E0 " << E0;
@@ -184,20 +158,20 @@ TEST_P(IntegratorSuite, EnergyBehaviour) {
       EXPECT_NEAR(mean(es.size() - tenth, es.size()), mean(0, tenth), 0.02 * E0);
       break;
     }
-    case Energy::accurate:
+    case EnergyBehaviour::follows_tolerance:
       EXPECT_LT(std::abs(elast - E0), 1e-6 * E0) << "E0 " << E0;
       break;
   }
 }
 
 TEST_P(IntegratorSuite, ExplicitPastStepLimitFailsAsOutcomeImplicitStaysBounded) {
-  const Traits& tr = traits(GetParam());
+  const IntegratorCapabilities cap = capabilities_of(GetParam());
   auto chain = make_chain(1e4);  // ω_max = 200 rad/s: explicit limit h ≈ 1e-2 s
   IntegratorOptions opt;
   opt.dt = 0.05;
   opt.runaway_speed = 1e3;
   auto r = run(GetParam(), *chain, 20.0, opt);
-  if (tr.explicit_method) {
+  if (cap.explicit_method) {
     EXPECT_TRUE(r.result.outcome == Outcome::diverged || r.result.outcome == Outcome::nan)
         << to_string(r.result.outcome) << ": " << r.result.message;
     EXPECT_FALSE(r.result.message.empty());
@@ -209,6 +183,25 @@ TEST_P(IntegratorSuite, ExplicitPastStepLimitFailsAsOutcomeImplicitStaysBounded)
     EXPECT_LE(chain->total_energy(r.q, r.v) - Eeq,
               (1 + 1e-6) * (chain->total_energy(chain->initial_q(), chain->initial_v()) - Eeq));
   }
+}
+
+TEST_P(IntegratorSuite, LibraryFailureCarriesTheLibraryFlag) {
+  if (!capabilities_of(GetParam()).controls_error) GTEST_SKIP() << GetParam() << " is an in-house fixed-step method";
+  // Error control cannot be met with a minimum step far above the stiff
+  // chain's period (2π/200 s): SUNDIALS gives up and names its flag.
+  auto chain = make_chain(1e4);
+  IntegratorOptions opt;
+  opt.adaptive = true;
+  opt.rtol = 1e-10;
+  opt.atol = 1e-12;
+  opt.dt = 0.5;
+  opt.min_step = 0.5;
+  auto r = run(GetParam(), *chain, 20.0, opt);
+  ASSERT_NE(r.result.outcome, Outcome::ok);
+  EXPECT_LT(r.result.library_flag, 0) << r.result.message;
+  EXPECT_TRUE(r.result.library_flag_name.starts_with("ARK_") || r.result.library_flag_name.starts_with("IDA_"))
+      << r.result.library_flag_name;
+  EXPECT_NE(r.result.message.find(r.result.library_flag_name), std::string::npos) << r.result.message;
 }
 
 TEST_P(IntegratorSuite, PinnedDofStaysFixedAndStatsAreCounted) {
@@ -223,7 +216,7 @@ TEST_P(IntegratorSuite, PinnedDofStaysFixedAndStatsAreCounted) {
   EXPECT_EQ(r.callbacks, r.stats.steps);
   EXPECT_GE(r.stats.rhs_evals, r.stats.steps);
   EXPECT_GT(r.stats.wall_s, 0.0);
-  if (!traits(GetParam()).explicit_method) {
+  if (!capabilities_of(GetParam()).explicit_method) {
     EXPECT_GT(r.stats.linear_setups, 0);
     EXPECT_GE(r.stats.linear_solves, r.stats.linear_setups);
     EXPECT_GT(r.stats.jac_evals, 0);
@@ -287,15 +280,15 @@ TEST_P(IntegratorSuite, StateTheModelCannotRepresentIsANamedOutcome) {
 }
 
 TEST_P(IntegratorSuite, StateDependentMassConservesEnergyOrIsNotOffered) {
-  const Traits& tr = traits(GetParam());
+  const IntegratorCapabilities cap = capabilities_of(GetParam());
   test::VariableMassOscillator osc(1.0, 2.0, 1.0, 0.8, 0.0);
   IntegratorOptions opt;
-  opt.dt = tr.energy == Energy::accurate ? 1e-3 : 2e-3;
-  opt.adaptive = tr.energy == Energy::accurate;
+  opt.dt = cap.energy == EnergyBehaviour::follows_tolerance ? 1e-3 : 2e-3;
+  opt.adaptive = cap.energy == EnergyBehaviour::follows_tolerance;
   opt.rtol = 1e-9;
   opt.atol = 1e-11;
   auto r = run(GetParam(), osc, 10.0, opt);
-  if (!tr.offers_q_dependent_mass) {
+  if (!cap.state_dependent_mass) {
     EXPECT_EQ(r.result.outcome, Outcome::not_offered);
     EXPECT_NE(r.result.message.find("not offered"), std::string::npos) << r.result.message;
     return;
@@ -304,22 +297,23 @@ TEST_P(IntegratorSuite, StateDependentMassConservesEnergyOrIsNotOffered) {
   const double E0 = osc.total_energy(osc.initial_q(), osc.initial_v());
   const double E1 = osc.total_energy(r.q, r.v);
   EXPECT_EQ(r.q[1], 0.0);
-  if (tr.energy == Energy::accurate) EXPECT_NEAR(E1, E0, 1e-5 * E0);
-  else if (tr.energy == Energy::bounded) EXPECT_NEAR(E1, E0, 0.02 * E0);
+  if (cap.energy == EnergyBehaviour::follows_tolerance) EXPECT_NEAR(E1, E0, 1e-5 * E0);
+  else if (cap.energy == EnergyBehaviour::bounded) EXPECT_NEAR(E1, E0, 0.02 * E0);
   else EXPECT_LT(E1, E0);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, IntegratorSuite, ::testing::ValuesIn(integrator_names()),
-                         [](const auto& info) {
-                           std::string s = info.param;
+                         [](const auto& param_info) {
+                           std::string s = param_info.param;
                            for (char& c : s)
                              if (c == '-') c = '_';
                            return s;
                          });
 
-TEST(IntegratorRegistry, EveryNameHasTraitsAndUnknownNameThrows) {
+TEST(IntegratorRegistry, EveryNameRunsInSomeModeAndUnknownNameThrows) {
   for (auto& n : integrator_names()) {
-    EXPECT_NO_THROW(traits(n));
+    const IntegratorCapabilities cap = capabilities_of(n);
+    EXPECT_TRUE(cap.controls_error || cap.fixed_step_order > 0) << n;
     EXPECT_EQ(make_integrator(n)->name(), n);
   }
   EXPECT_THROW(make_integrator("rk-nonsense"), std::invalid_argument);

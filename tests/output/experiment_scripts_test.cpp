@@ -99,8 +99,8 @@ struct Runs {
   Runs() {
     // A: frames at 0, 0.1, 0.2 s; B: every 0.05 s accumulated (times off by rounding only).
     std::vector<double> b_times;
-    double t = 0.0;
-    for (int k = 0; k < 5; ++k, t += 0.05) b_times.push_back(t);
+    double tb = 0.0;
+    for (int k = 0; k < 5; ++k, tb += 0.05) b_times.push_back(tb);
     write_run(yarn, "yarn", {0.0, 0.1, 0.2}, {1.0, 2.0, 3.0}, [](double t) { return yarn_frame(6, t, kOffset); });
     write_run(fine, "fine", {0.0, 0.1, 0.2}, {0.5, 4.0, 1.0}, [](double t) { return continuum_frame(9, t, kOffset); });
     write_run(coarse, "coarse", b_times, {3.0, 5.0, 7.0, 100.0}, [](double t) { return continuum_frame(5, t, 0.0); });
