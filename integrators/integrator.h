@@ -108,7 +108,7 @@ class Integrator {
   // them carries S_q = ∂q/∂p and S_v = ∂v/∂p (num_dofs × keys, zero at t0)
   // for the model's parameter keys named here. Call before initialize(), which
   // throws std::invalid_argument for a key the model does not differentiate.
-  virtual bool offers_sensitivities() const { return false; }
+  bool offers_sensitivities() const { return capabilities().sensitivities; }
   void track_sensitivities(std::vector<std::string> keys) { sensitivity_keys_ = std::move(keys); }
   const std::vector<std::string>& sensitivity_keys() const { return sensitivity_keys_; }
   const Eigen::MatrixXd& dq_dp() const { return dq_dp_; }
