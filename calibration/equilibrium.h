@@ -53,7 +53,7 @@ class EquilibriumSolver {
   double held_norm(const Vec& f) const;
 
   Model& model_;
-  std::vector<int> held_;        // pinned ∪ prescribed, sorted
+  std::vector<int> held_;  // pinned ∪ prescribed, sorted
   std::vector<char> is_held_;
   std::unique_ptr<SparseSolver> solver_;
   Evaluation eval_;

@@ -47,7 +47,11 @@ class CurveCost final : public ceres::CostFunction {
  public:
   CurveCost(const FitCurve& curve, const FemMaterial& base, const std::vector<std::string>& free,
             const ContinuumTest& continuum, int* evaluations)
-      : curve_(curve), base_(base), free_(free), keys_(prefixed(free)), continuum_(continuum),
+      : curve_(curve),
+        base_(base),
+        free_(free),
+        keys_(prefixed(free)),
+        continuum_(continuum),
         evaluations_(evaluations) {
     double range = 0.0;
     for (double r : curve.target) range = std::max(range, std::abs(r));
@@ -252,10 +256,11 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     const double span = 1e-6 * (upper[k] - lower[k]);
     p.at_bound = best.theta[k] - lower[k] < span || upper[k] - best.theta[k] < span;
     p.weakly_determined = J.col(k).norm() < 1e-3 * max_col;
-    const bool held = std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) != stats.unidentifiable.end();
+    const bool held =
+        std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) != stats.unidentifiable.end();
     p.weakly_determined = p.weakly_determined || held;
-    p.std_error = C.size() && !held ? p.value * std::sqrt(std::max(0.0, C(k, k)))
-                                    : std::numeric_limits<double>::quiet_NaN();
+    p.std_error =
+        C.size() && !held ? p.value * std::sqrt(std::max(0.0, C(k, k))) : std::numeric_limits<double>::quiet_NaN();
     double lo = std::numeric_limits<double>::infinity(), hi = 0;
     for (const StartOutcome& s : result.starts)
       if (s.usable && s.cost <= best_cost * (1 + 1e-3) + 1e-20) {

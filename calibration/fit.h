@@ -42,7 +42,7 @@ struct FitOptions {
 };
 
 struct FittedParameter {
-  std::string key;  // without prefix
+  std::string key;                             // without prefix
   double start = 0, value = 0, std_error = 0;  // std_error NaN when the covariance is not available
   double lower = 0, upper = 0;
   bool at_bound = false;
@@ -69,16 +69,16 @@ struct FitResult {
   std::vector<StartOutcome> starts;
   int starts_at_best = 0;  // starts whose cost is within 0.1 % of the best (the others found other minima)
   double cost = 0;
-  int iterations = 0;    // of the best start
-  int evaluations = 0;   // curve evaluations over all starts
+  int iterations = 0;   // of the best start
+  int evaluations = 0;  // curve evaluations over all starts
   double wall_s = 0, cpu_s = 0;
   bool converged = false;
   std::string message;
 };
 
 // Continuum response of one test at material m (with sensitivities for `keys`, prefixed).
-using ContinuumTest = std::function<ResponseCurve(const FemMaterial& m, const TestSpec& test,
-                                                  const std::vector<std::string>& keys)>;
+using ContinuumTest =
+    std::function<ResponseCurve(const FemMaterial& m, const TestSpec& test, const std::vector<std::string>& keys)>;
 
 FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& guess, const ContinuumTest& continuum,
                         const FitOptions& options);

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/SVD>
 #include <ceres/ceres.h>
+#include <Eigen/SVD>
 
 namespace wl {
 
@@ -51,8 +51,10 @@ OptimumStatistics optimum_statistics(ceres::Problem& problem, double* theta, int
     s.covariance *= 2.0 * s.cost / (m - n + static_cast<int>(s.unidentifiable.size()));
   }
   if (!s.unidentifiable.empty()) problem.SetManifold(theta, nullptr);
-  if (!ok) s.covariance_message = "the Jacobian is rank deficient: some parameter is not identifiable (singular values)";
-  else if (!s.unidentifiable.empty()) s.covariance_message = "some parameters are not identifiable (held for the covariance)";
+  if (!ok)
+    s.covariance_message = "the Jacobian is rank deficient: some parameter is not identifiable (singular values)";
+  else if (!s.unidentifiable.empty())
+    s.covariance_message = "some parameters are not identifiable (held for the covariance)";
   return s;
 }
 

@@ -9,18 +9,18 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <ceres/problem.h>
+#include <Eigen/Core>
 
 namespace wl {
 
 struct OptimumStatistics {
   double cost = 0.0;
-  Eigen::MatrixXd jacobian;              // m × n at θ
+  Eigen::MatrixXd jacobian;  // m × n at θ
   std::vector<double> singular_values;
-  std::vector<int> unidentifiable;       // indices into θ
-  Eigen::MatrixXd covariance;            // n × n of θ (zero rows for unidentifiable ones); empty when unavailable
-  std::string covariance_message;        // why it is unavailable
+  std::vector<int> unidentifiable;  // indices into θ
+  Eigen::MatrixXd covariance;       // n × n of θ (zero rows for unidentifiable ones); empty when unavailable
+  std::string covariance_message;   // why it is unavailable
   // Correlation matrix from `covariance` (empty when it is empty).
   std::vector<std::vector<double>> correlation() const;
 };

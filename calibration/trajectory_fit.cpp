@@ -4,13 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <ctime>
+#include <functional>
 #include <limits>
 #include <memory>
 
-#include <Eigen/Sparse>
 #include <ceres/ceres.h>
+#include <Eigen/Sparse>
 
 #include "calibration/optimum_statistics.h"
 #include "calibration/scene_parameters.h"
@@ -320,8 +320,8 @@ TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetF
     fp.upper = std::exp(upper[k]);
     const double span = 1e-6 * (upper[k] - lower[k]);
     fp.at_bound = theta[k] - lower[k] < span || upper[k] - theta[k] < span;
-    fp.identifiable = std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) ==
-                      stats.unidentifiable.end();
+    fp.identifiable =
+        std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) == stats.unidentifiable.end();
     // Delta method: σ_p = p·σ_θ.
     fp.std_error = stats.covariance.size() && fp.identifiable
                        ? fp.value * std::sqrt(std::max(0.0, stats.covariance(k, k)))

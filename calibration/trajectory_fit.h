@@ -27,9 +27,9 @@ struct TargetFrame {
 };
 
 struct TrajectoryFitOptions {
-  std::string model = "yarn";        // "yarn" or "fem"
-  std::string integrator;            // "" = the scene's; must offer sensitivities
-  std::vector<std::string> free;     // scene keys (calibration/scene_parameters.h)
+  std::string model = "yarn";           // "yarn" or "fem"
+  std::string integrator;               // "" = the scene's; must offer sensitivities
+  std::vector<std::string> free;        // scene keys (calibration/scene_parameters.h)
   std::map<std::string, double> start;  // start values; absent keys start at the scene's value
   double bound_factor = 100.0;
   int max_iterations = 50;
@@ -54,10 +54,10 @@ struct TrajectoryFitResult {
   int iterations = 0;
   int simulations = 0;
   double wall_s = 0.0, cpu_s = 0.0;
-  int observed_points = 0;                // per frame
-  std::vector<double> cost_history;       // Ceres cost per iteration (iteration 0 = start)
-  std::vector<double> times;              // the fitted frames
-  std::vector<double> start_rms, final_rms;  // per frame, RMS distance to the target [m]
+  int observed_points = 0;                            // per frame
+  std::vector<double> cost_history;                   // Ceres cost per iteration (iteration 0 = start)
+  std::vector<double> times;                          // the fitted frames
+  std::vector<double> start_rms, final_rms;           // per frame, RMS distance to the target [m]
   std::vector<Vec> start_positions, final_positions;  // per frame, the observed points (x₀,y₀,z₀,x₁,…) [m]
 };
 

@@ -19,9 +19,12 @@ struct TestInfo {
 };
 
 const TestInfo kTests[] = {
-    {TestKind::uniaxial_warp, "uniaxial-warp", "1", "N/m"}, {TestKind::uniaxial_weft, "uniaxial-weft", "1", "N/m"},
-    {TestKind::biaxial, "biaxial", "1", "N/m"},             {TestKind::shear, "shear", "rad", "N/m"},
-    {TestKind::bending_warp, "bending-warp", "1/m", "N"},   {TestKind::bending_weft, "bending-weft", "1/m", "N"},
+    {TestKind::uniaxial_warp, "uniaxial-warp", "1", "N/m"},
+    {TestKind::uniaxial_weft, "uniaxial-weft", "1", "N/m"},
+    {TestKind::biaxial, "biaxial", "1", "N/m"},
+    {TestKind::shear, "shear", "rad", "N/m"},
+    {TestKind::bending_warp, "bending-warp", "1/m", "N"},
+    {TestKind::bending_weft, "bending-weft", "1/m", "N"},
 };
 
 const TestInfo& info(TestKind k) {
@@ -106,8 +109,12 @@ Scene material_test_scene(const Scene& scene, int patch, bool sliding) {
   const int min_patch = minimum_patch(scene);
   if (patch < min_patch) {
     std::ostringstream s;
-    s << "patch of " << patch << " crossings is too small for the " << (scene.pattern.kind == Pattern::Kind::plain ? "plain" : scene.pattern.kind == Pattern::Kind::twill ? "twill" : "satin")
-      << " pattern: need at least " << min_patch << " (one pattern repeat inside the two clamped rings of the bending tests)";
+    s << "patch of " << patch << " crossings is too small for the "
+      << (scene.pattern.kind == Pattern::Kind::plain   ? "plain"
+          : scene.pattern.kind == Pattern::Kind::twill ? "twill"
+                                                       : "satin")
+      << " pattern: need at least " << min_patch
+      << " (one pattern repeat inside the two clamped rings of the bending tests)";
     throw std::invalid_argument(s.str());
   }
   Scene t = scene;
@@ -244,8 +251,11 @@ ResponseCurve run_fem_test(const Scene& test_scene, const FemMaterial& material,
                            const std::vector<std::string>& keys, const EquilibriumOptions& options) {
   FemModel model(test_scene, make_fem_mesh(test_scene), material);
   return run_material_test(
-      model, [&](int i, int j) { return 3 * model.vertex_of_node({i, j}); }, test, test_scene.warps,
-      test_scene.spacing_m, keys, options);
+      model,
+      [&](int i, int j) {
+        return 3 * model.vertex_of_node({i, j});
+      },
+      test, test_scene.warps, test_scene.spacing_m, keys, options);
 }
 
 }  // namespace wl

@@ -93,7 +93,6 @@ ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>
 ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const EquilibriumOptions& options = {});
 struct FemMaterial;
 ResponseCurve run_fem_test(const Scene& test_scene, const FemMaterial& material, const TestSpec& test,
-                           const std::vector<std::string>& parameter_keys = {},
-                           const EquilibriumOptions& options = {});
+                           const std::vector<std::string>& parameter_keys = {}, const EquilibriumOptions& options = {});
 
 }  // namespace wl

@@ -19,8 +19,7 @@ std::string ArkodeIntegrator::name() const {
   return "arkode";
 }
 
-void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec& v0,
-                                  const IntegratorOptions& opt) {
+void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
   StepClock clock(own_);
   mem_.reset();
   mls_.reset();
@@ -42,8 +41,8 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   } else {
     // M(q) is symmetric positive definite: Cholesky (CHOLMOD), twice as fast
     // as LU for arkode-dirk on the yarn cloth; LU if Cholesky ever fails.
-    msolver_ = std::make_unique<SparseSolver>(model.pattern(), fixed_,
-                                              SparseSolver::Options{LinearSolverMethod::cholmod, {}});
+    msolver_ =
+        std::make_unique<SparseSolver>(model.pattern(), fixed_, SparseSolver::Options{LinearSolverMethod::cholmod, {}});
   }
 
   if (!ctx_) ctx_ = sun::make_context();
@@ -239,8 +238,8 @@ StepResult ArkodeIntegrator::failure(int flag) {
   if (flag == ARK_ERR_FAILURE || flag == ARK_TOO_CLOSE) o = Outcome::step_too_small;
   else if (flag == ARK_TOO_MUCH_WORK) o = Outcome::max_steps;
   Eigen::Map<const Vec> y(sun::data(y_.get()), 2 * n_);
-  if (!y.allFinite() || flag == ARK_RHSFUNC_FAIL || flag == ARK_REPTD_RHSFUNC_ERR ||
-      flag == ARK_FIRST_RHSFUNC_ERR || flag == ARK_UNREC_RHSFUNC_ERR)
+  if (!y.allFinite() || flag == ARK_RHSFUNC_FAIL || flag == ARK_REPTD_RHSFUNC_ERR || flag == ARK_FIRST_RHSFUNC_ERR ||
+      flag == ARK_UNREC_RHSFUNC_ERR)
     o = Outcome::nan;
   const std::string flag_name = sun::flag_name(ARKStepGetReturnFlagName(flag));
   return {o, name() + " failed with " + flag_name + (last_error_.empty() ? "" : ": ") + last_error_, flag, flag_name};

@@ -71,14 +71,14 @@ class ArkodeIntegrator : public Integrator {
   int n_ = 0;
   Evaluation ev_, mev_;
   bool mass_in_arkode_ = false;
-  SparseMatrix mass_;  // constant M (mass in ARKODE)
+  SparseMatrix mass_;                      // constant M (mass in ARKODE)
   std::unique_ptr<SparseSolver> msolver_;  // M(q) solves in the explicit-form right-hand side
   Vec mass_q_;                             // the q of msolver_'s factorization
   bool mass_factored_ = false;
   long own_setups_ = 0, own_solves_ = 0, last_nni_ = 0;
   long attempts_setup_ = -1;
   double t_setup_ = 0.0;  // ARKODE's step attempts at the last Newton-matrix setup
-  IntegratorStats own_;  // wall/CPU time accumulated here
+  IntegratorStats own_;   // wall/CPU time accumulated here
   std::string last_error_;
   // SUNDIALS objects: context first, memory last (destroyed first).
   sun::Context ctx_;

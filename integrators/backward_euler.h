@@ -19,7 +19,9 @@ class BackwardEuler : public Integrator {
   explicit BackwardEuler(Variant variant) : variant_(variant) {}
   std::string name() const override { return variant_ == Variant::linear ? "be-linear" : "be-newton"; }
   IntegratorCapabilities capabilities() const override {
-    return {.fixed_step_order = 1, .state_dependent_mass = true, .sensitivities = true,
+    return {.fixed_step_order = 1,
+            .state_dependent_mass = true,
+            .sensitivities = true,
             .energy = EnergyBehaviour::dissipative};
   }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;

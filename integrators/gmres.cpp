@@ -5,8 +5,17 @@
 namespace wl {
 
 Gmres::Gmres(int n, int restart)
-    : n_(n), m_(restart), v_(n, restart + 1), z_(n, restart), h_(restart + 1, restart), cs_(restart),
-      sn_(restart), g_(restart + 1), y_(restart), w_(n), r_(n) {}
+    : n_(n),
+      m_(restart),
+      v_(n, restart + 1),
+      z_(n, restart),
+      h_(restart + 1, restart),
+      cs_(restart),
+      sn_(restart),
+      g_(restart + 1),
+      y_(restart),
+      w_(n),
+      r_(n) {}
 
 Gmres::Result Gmres::solve(const Apply& a, const Apply& precond, const Vec& b, Vec& x, double tol, int max_iters) {
   Result res;

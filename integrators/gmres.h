@@ -19,7 +19,7 @@ class Gmres {
 
   struct Result {
     bool converged = false;
-    int iterations = 0;       // Arnoldi steps (one A product and one P⁻¹ solve each)
+    int iterations = 0;              // Arnoldi steps (one A product and one P⁻¹ solve each)
     double relative_residual = 0.0;  // ‖b − A x‖ / ‖b‖ at exit, recomputed from x
   };
   // Starts from the x given (e.g. zero or the previous solution).

@@ -67,8 +67,8 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
     IDAGetCurrentCj(mem_.get(), &cj);
     return 2.0 / (1.0 + cj / cj_setup_);
   };
-  ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, !model.mass_depends_on_q(),
-                                              step_solver_options(), query, stale, scale);
+  ls_ = std::make_unique<ReducedLinearSolver>(ctx_.get(), model, 0u, !model.mass_depends_on_q(), step_solver_options(),
+                                              query, stale, scale);
   auto check = [&](int flag, const char* what) {
     if (flag < 0)
       throw std::runtime_error(std::string("ida: ") + what + " failed: " + sun::flag_name(IDAGetReturnFlagName(flag)));
@@ -133,8 +133,7 @@ StepResult IdaIntegrator::failure(int flag) {
   if (flag == IDA_ERR_FAIL) o = Outcome::step_too_small;
   else if (flag == IDA_TOO_MUCH_WORK) o = Outcome::max_steps;
   Eigen::Map<const Vec> y(sun::data(y_.get()), 2 * n_);
-  if (!y.allFinite() || flag == IDA_RES_FAIL || flag == IDA_REP_RES_ERR || flag == IDA_FIRST_RES_FAIL)
-    o = Outcome::nan;
+  if (!y.allFinite() || flag == IDA_RES_FAIL || flag == IDA_REP_RES_ERR || flag == IDA_FIRST_RES_FAIL) o = Outcome::nan;
   const std::string flag_name = sun::flag_name(IDAGetReturnFlagName(flag));
   return {o, "IDA failed with " + flag_name + (last_error_.empty() ? "" : ": ") + last_error_, flag, flag_name};
 }

@@ -24,8 +24,8 @@
 #include <string>
 
 #include "integrators/integrator.h"
-#include "integrators/sundials_handles.h"
 #include "integrators/reduced_linear_solver.h"
+#include "integrators/sundials_handles.h"
 
 namespace wl {
 
@@ -49,10 +49,10 @@ class IdaIntegrator : public Integrator {
 
   int n_ = 0;
   Evaluation ev_;
-  SparseMatrix mass_;  // constant mass (when !mass_depends_on_q)
+  SparseMatrix mass_;      // constant mass (when !mass_depends_on_q)
   double cj_setup_ = 1.0;  // c_j of the last Newton-matrix setup
   long ncf_setup_ = 0;     // IDA's Newton convergence failures at that setup
-  IntegratorStats own_;  // wall/CPU time accumulated here
+  IntegratorStats own_;    // wall/CPU time accumulated here
   std::string last_error_;
   long last_nni_ = 0;
   // SUNDIALS objects: context first, memory last (destroyed first).

@@ -21,28 +21,28 @@ const char* to_string(Outcome o);
 struct IntegratorStats {
   long steps = 0;
   long rejected_steps = 0;
-  long rhs_evals = 0;        // force evaluations
-  long jac_evals = 0;        // Jacobian (∂f/∂q, ∂f/∂v) evaluations
-  long linear_setups = 0;    // numeric factorizations
+  long rhs_evals = 0;      // force evaluations
+  long jac_evals = 0;      // Jacobian (∂f/∂q, ∂f/∂v) evaluations
+  long linear_setups = 0;  // numeric factorizations
   long linear_solves = 0;
-  long nonlinear_iters = 0;  // Newton iterations (implicit methods)
-  long factorizations = 0;   // sparse numeric factorizations (fewer than setups when gmres keeps one)
-  long krylov_iters = 0;     // GMRES iterations (linear solver gmres)
-  std::string linear_solver; // the step matrix solver in use (SparseSolver::description())
+  long nonlinear_iters = 0;            // Newton iterations (implicit methods)
+  long factorizations = 0;             // sparse numeric factorizations (fewer than setups when gmres keeps one)
+  long krylov_iters = 0;               // GMRES iterations (linear solver gmres)
+  std::string linear_solver;           // the step matrix solver in use (SparseSolver::description())
   double step_matrix_asymmetry = 0.0;  // largest ‖A − Aᵀ‖_F / ‖A‖_F seen
   double wall_s = 0.0;
   double cpu_s = 0.0;
 };
 
 struct IntegratorOptions {
-  double dt = 1e-3;          // fixed step, or initial step when adaptive [s]
+  double dt = 1e-3;  // fixed step, or initial step when adaptive [s]
   bool adaptive = false;
   double rtol = 1e-6;
   double atol = 1e-9;
   long max_steps = 10000000;  // over the whole run
   double min_step = 1e-12;    // [s]
   // Newton (implicit methods)
-  double newton_tol = 1e-8;   // relative residual / update tolerance
+  double newton_tol = 1e-8;  // relative residual / update tolerance
   int newton_max_iters = 20;
   // A state whose max |v| exceeds this is a divergence [m/s].
   double runaway_speed = 1e4;
@@ -81,9 +81,9 @@ enum class EnergyBehaviour {
 // What a method is and offers, declared once by each integrator and read by
 // the experiments and the test suite (docs/design.md §6.1).
 struct IntegratorCapabilities {
-  bool controls_error = false;  // adapts its step to rtol/atol (honours IntegratorOptions::adaptive)
-  int fixed_step_order = 0;     // classical order at fixed steps; 0: no fixed-step mode (variable order)
-  bool explicit_method = false;  // no linear solves with the Jacobian; step bounded by stability
+  bool controls_error = false;        // adapts its step to rtol/atol (honours IntegratorOptions::adaptive)
+  int fixed_step_order = 0;           // classical order at fixed steps; 0: no fixed-step mode (variable order)
+  bool explicit_method = false;       // no linear solves with the Jacobian; step bounded by stability
   bool state_dependent_mass = false;  // integrates models whose M depends on q
   bool sensitivities = false;         // carries forward parameter sensitivities
   EnergyBehaviour energy = EnergyBehaviour::dissipative;

@@ -56,8 +56,8 @@ class ReducedLinearSolver {
  public:
   struct Coefficients {
     double alpha = 1.0, beta = 0.0, k = 0.0, m = 1.0, d = 0.0;
-    double pinned = 1.0;          // diagonal of the pinned rows
-    bool mass_times_bv = false;   // explicit form: the v rows were multiplied by M
+    double pinned = 1.0;         // diagonal of the pinned rows
+    bool mass_times_bv = false;  // explicit form: the v rows were multiplied by M
   };
   // Where and how to form the matrix, asked at every setup: the time, the
   // state y = (q, v) (2n values) and the coefficients. Returns false on failure.
@@ -100,7 +100,7 @@ class ReducedLinearSolver {
   std::vector<char> pinned_;
   Evaluation ev_, mev_;  // K, D (and M) at the setup point; M when evaluated alone
   const SparseMatrix* mass_ = nullptr;
-  SparseMatrix s_;      // m M − d D − (kβ/α) K
+  SparseMatrix s_;  // m M − d D − (kβ/α) K
   SparseSolver solver_;
   Coefficients c_;
   Vec q_, v_, wq_, r_, xv_, u_;

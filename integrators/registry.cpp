@@ -5,8 +5,8 @@
 #include "integrators/arkode_integrator.h"
 #include "integrators/backward_euler.h"
 #include "integrators/ida_integrator.h"
-#include "integrators/symplectic_euler.h"
 #include "integrators/integrator.h"
+#include "integrators/symplectic_euler.h"
 
 namespace wl {
 
@@ -28,8 +28,8 @@ StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt)
   if (!q.allFinite() || !v.allFinite()) return {Outcome::nan, "NaN or Inf in the state"};
   const double vmax = v.lpNorm<Eigen::Infinity>();
   if (vmax > opt.runaway_speed)
-    return {Outcome::diverged, "runaway state: max |v| = " + std::to_string(vmax) + " exceeds " +
-                                   std::to_string(opt.runaway_speed)};
+    return {Outcome::diverged,
+            "runaway state: max |v| = " + std::to_string(vmax) + " exceeds " + std::to_string(opt.runaway_speed)};
   return {};
 }
 
@@ -53,7 +53,8 @@ void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, con
     const std::vector<std::string> known = model.parameter_keys();
     for (const std::string& key : sensitivity_keys_)
       if (std::find(known.begin(), known.end(), key) == known.end())
-        throw std::invalid_argument("the " + model.name() + " model of this scene does not differentiate '" + key + "'");
+        throw std::invalid_argument("the " + model.name() + " model of this scene does not differentiate '" + key +
+                                    "'");
   }
   dq_dp_ = Eigen::MatrixXd::Zero(model.num_dofs(), static_cast<Eigen::Index>(sensitivity_keys_.size()));
   dv_dp_ = dq_dp_;

@@ -17,7 +17,9 @@ class StepClock {
   }
   StepClock(const StepClock&) = delete;
   StepClock& operator=(const StepClock&) = delete;
-  double elapsed_wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count(); }
+  double elapsed_wall() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0_).count();
+  }
 
  private:
   IntegratorStats& stats_;

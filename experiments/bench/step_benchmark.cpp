@@ -29,19 +29,21 @@ int main(int argc, char** argv) {
       std::stringstream list(argv[++i]);
       for (std::string name; std::getline(list, name, ',');) solvers.push_back(name);
     } else if (!std::strcmp(argv[i], "--help")) {
-      std::printf("usage: weavelab_bench [--model yarn|fem] [--integrator be-linear|be-newton]\n"
-                  "                      [--linear-solvers umfpack,auto,...] [--steps N] [scene.toml ...]\n"
-                  "       weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]\n");
+      std::printf(
+          "usage: weavelab_bench [--model yarn|fem] [--integrator be-linear|be-newton]\n"
+          "                      [--linear-solvers umfpack,auto,...] [--steps N] [scene.toml ...]\n"
+          "       weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]\n");
       return 0;
     } else scenes.push_back(argv[i]);
   }
   if (scenes.empty())
     scenes = {"experiments/scenes/hanging_wind.toml", "experiments/scenes/hanging_wind_65.toml",
               "experiments/scenes/hanging_wind_129.toml"};
-  std::printf("model %s, integrator %s; times in ms, medians over the timed steps (step_mean: mean)\n"
-              "umfpack = factor+solve of the step matrix A with UMFPACK LU (the reference);\n"
-              "chol(S) = CHOLMOD LLT factor+solve of S = (A + A^T)/2 of the same matrix\n",
-              model.c_str(), integrator.c_str());
+  std::printf(
+      "model %s, integrator %s; times in ms, medians over the timed steps (step_mean: mean)\n"
+      "umfpack = factor+solve of the step matrix A with UMFPACK LU (the reference);\n"
+      "chol(S) = CHOLMOD LLT factor+solve of S = (A + A^T)/2 of the same matrix\n",
+      model.c_str(), integrator.c_str());
   std::printf("%-40s %-8s %7s %9s %9s %9s %9s %9s %9s %7s %7s %6s %6s %7s  %s\n", "scene", "solver", "dofs", "nnz",
               "step_mean", "step", "umfpack", "chol(S)", "assembly", "/umfp", "/chol", "fact", "krylov", "peak_MB",
               "chosen");
@@ -52,8 +54,8 @@ int main(int argc, char** argv) {
         // Fewer timed steps where one factorization takes seconds.
         const int n = scene.nodes_u() * scene.nodes_v();
         const int steps = steps_override > 0 ? steps_override : n < 1000 ? 100 : n < 10000 ? 20 : 8;
-        const wl::bench::Figures f = wl::bench::measure(scene, model, integrator, 3, steps, true,
-                                                        wl::parse_linear_solver(solver));
+        const wl::bench::Figures f =
+            wl::bench::measure(scene, model, integrator, 3, steps, true, wl::parse_linear_solver(solver));
         std::printf("%-40s %-8s %7d %9ld %9.3f %9.3f %9.3f %9.3f %9.3f %7.2f %7.2f %6.2f %6.1f %7.0f  %s\n", s.c_str(),
                     solver.c_str(), f.dofs, f.nnz, f.step.mean_wall_ms(), f.step.wall_ms(), f.factor_solve.wall_ms(),
                     f.cholmod_reference.wall_ms(), f.assembly.wall_ms(), f.step.wall_ms() / f.factor_solve.wall_ms(),
@@ -66,7 +68,8 @@ int main(int argc, char** argv) {
       }
     }
   }
-  std::printf("/umfp, /chol = median step / median umfpack, chol(S); fact = factorizations per step; krylov = GMRES\n"
-              "iterations per step; peak_MB = peak resident size of the benchmark process so far\n");
+  std::printf(
+      "/umfp, /chol = median step / median umfpack, chol(S); fact = factorizations per step; krylov = GMRES\n"
+      "iterations per step; peak_MB = peak resident size of the benchmark process so far\n");
   return 0;
 }

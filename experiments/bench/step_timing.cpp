@@ -37,8 +37,8 @@ double Timing::mean_wall_ms() const {
   return wall.empty() ? 0.0 : 1e3 * s / wall.size();
 }
 
-Figures measure(const Scene& scene, const std::string& model_name, const std::string& integrator, int warmup,
-                int steps, bool parts, LinearSolverMethod method) {
+Figures measure(const Scene& scene, const std::string& model_name, const std::string& integrator, int warmup, int steps,
+                bool parts, LinearSolverMethod method) {
   Figures fig;
   fig.model = model_name;
   fig.parts = parts;

@@ -32,14 +32,14 @@ struct Figures {
   bool parts = false;  // references and assembly measured
   std::string solver;  // the step's solver (SparseSolver::description())
   double factorizations_per_step = 0.0, krylov_per_step = 0.0;
-  double peak_mb = 0.0;  // peak resident size of the process after the measurement
+  double peak_mb = 0.0;                                    // peak resident size of the process after the measurement
   Timing step, factor_solve, cholmod_reference, assembly;  // factor_solve: UMFPACK of A
 };
 
 // `warmup` untimed steps, then `steps` timed ones (with factor+solve and
 // assembly when `parts`). Throws std::runtime_error when a step fails.
-Figures measure(const Scene& scene, const std::string& model_name, const std::string& integrator, int warmup,
-                int steps, bool parts, LinearSolverMethod method = LinearSolverMethod::automatic);
+Figures measure(const Scene& scene, const std::string& model_name, const std::string& integrator, int warmup, int steps,
+                bool parts, LinearSolverMethod method = LinearSolverMethod::automatic);
 
 double process_cpu_s();
 

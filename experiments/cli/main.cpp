@@ -21,9 +21,9 @@
 #include "experiments/driver/stability.h"
 #include "experiments/driver/sweep.h"
 #include "experiments/driver/work_precision.h"
+#include "experiments/output/run_reader.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_material.h"
-#include "experiments/output/run_reader.h"
 #include "models/scene/scene.h"
 
 namespace {
@@ -77,8 +77,8 @@ struct ExperimentArgs {
 void add_experiment_options(CLI::App* cmd, ExperimentArgs& a, const std::string& default_out) {
   cmd->add_option("scene", a.scene, "Scene file (TOML)")->required();
   cmd->add_option("--models", a.models, "Comma-separated models: " + joined(wl::model_names()))->capture_default_str();
-  cmd->add_option("--integrators", a.integrators, "Comma-separated integrators (default: all that apply): " +
-                                                      joined(wl::integrator_names()));
+  cmd->add_option("--integrators", a.integrators,
+                  "Comma-separated integrators (default: all that apply): " + joined(wl::integrator_names()));
   cmd->add_option("--duration", a.duration, "Simulated time [s] (overrides the scene)");
   cmd->add_option("--out", a.out, "Output folder (default " + default_out + ")");
   cmd->add_flag("--quiet", a.quiet, "No progress on stderr");
@@ -118,7 +118,8 @@ int main(int argc, char** argv) {
   run->add_option("--duration", duration, "Simulated time [s] (overrides the scene)");
   run->add_option("--output-interval", output_interval, "Time between frames [s] (overrides the scene)");
   run->add_option("--out", out_dir, "Output folder (default results/<scene name>/<model>)");
-  run->add_flag("--adaptive", adaptive, "Adaptive steps with error control (overrides the scene; --dt is the first step)");
+  run->add_flag("--adaptive", adaptive,
+                "Adaptive steps with error control (overrides the scene; --dt is the first step)");
   run->add_option("--rtol", rtol, "Relative tolerance of adaptive steps (implies --adaptive; atol = 1e-3 rtol m)");
   run->add_flag("--quiet", quiet, "No progress on stderr");
   std::string fem_params;
@@ -164,19 +165,26 @@ int main(int argc, char** argv) {
   std::vector<std::string> cal_ladders, cal_validate;
   bool cal_quiet = false;
   auto* calibrate = app.add_subcommand(
-      "calibrate", "Fit the continuum's [fem] parameters to virtual material tests of the scene's fabric at yarn "
-                   "level (Ceres), validate on motion; writes params.toml, calibration.json, curves.csv, validation.csv");
+      "calibrate",
+      "Fit the continuum's [fem] parameters to virtual material tests of the scene's fabric at yarn "
+      "level (Ceres), validate on motion; writes params.toml, calibration.json, curves.csv, validation.csv");
   calibrate->add_option("scene", cal_scene, "Scene file (TOML) whose fabric is calibrated")->required();
   calibrate->add_option("--tests", cal_tests, "Comma-separated tests (default all): " + joined(wl::test_names()));
-  calibrate->add_option("--patch", cal.patch, "Crossings per side of the test patch (default: the scene's, at most 33)");
-  calibrate->add_option("--ladder", cal_ladders,
-                        "TEST=λ1,λ2,... load ladder of a test (strain, shear angle [rad] or curvature [1/m]); repeatable");
-  calibrate->add_option("--free", cal_free, "Comma-separated [fem] keys to fit (default: all the tests inform): " +
-                                                joined(wl::fittable_parameters()));
-  calibrate->add_option("--starts", cal.fit.starts, "Fit starts (the first guess, then seeded draws)")->capture_default_str();
+  calibrate->add_option("--patch", cal.patch,
+                        "Crossings per side of the test patch (default: the scene's, at most 33)");
+  calibrate->add_option(
+      "--ladder", cal_ladders,
+      "TEST=λ1,λ2,... load ladder of a test (strain, shear angle [rad] or curvature [1/m]); repeatable");
+  calibrate->add_option(
+      "--free", cal_free,
+      "Comma-separated [fem] keys to fit (default: all the tests inform): " + joined(wl::fittable_parameters()));
+  calibrate->add_option("--starts", cal.fit.starts, "Fit starts (the first guess, then seeded draws)")
+      ->capture_default_str();
   calibrate->add_option("--seed", cal.fit.seed, "Seed of the start draws")->capture_default_str();
-  calibrate->add_option("--loss", cal.fit.loss, "Robust loss per test curve: none, huber, cauchy")->capture_default_str();
-  calibrate->add_flag("--sliding", cal.sliding, "Leave the yarn sliding coordinates free in the tests (default frozen)");
+  calibrate->add_option("--loss", cal.fit.loss, "Robust loss per test curve: none, huber, cauchy")
+      ->capture_default_str();
+  calibrate->add_flag("--sliding", cal.sliding,
+                      "Leave the yarn sliding coordinates free in the tests (default frozen)");
   calibrate->add_flag("--border-strip", cal.border_strip,
                       "Continuum with bars for the border yarns' outer half spacing ([fem] border_strip)");
   calibrate->add_option("--validate", cal_validate, "Scene to validate the calibrated continuum on (repeatable)");
@@ -188,15 +196,16 @@ int main(int argc, char** argv) {
   double fid_tolerance = 0, fid_duration = 0;
   bool fid_quiet = false;
   auto* fidelity = app.add_subcommand(
-      "fidelity", "Run the scene at a ladder of model fidelities (yarn without one term, frozen sliding, continuum "
-                  "at strides 1, 2, 4) and measure each against the full yarn model; writes fidelity.csv and .json");
+      "fidelity",
+      "Run the scene at a ladder of model fidelities (yarn without one term, frozen sliding, continuum "
+      "at strides 1, 2, 4) and measure each against the full yarn model; writes fidelity.csv and .json");
   fidelity->add_option("scene", fid_scene, "Scene file (TOML)")->required();
   fidelity->add_option("--tolerance", fid_tolerance,
                        "Worst-frame RMS distance a variant may have to count as good enough [m] (default 1 % of the "
                        "cloth size)");
-  fidelity->add_option("--variants", fid_variants,
-                       "Comma-separated variants (default: all the scene allows): " +
-                           joined(wl::fidelity_variant_names()));
+  fidelity->add_option(
+      "--variants", fid_variants,
+      "Comma-separated variants (default: all the scene allows): " + joined(wl::fidelity_variant_names()));
   fidelity->add_option("--reference", fid.reference, "Yarn-level variant the others are measured against")
       ->capture_default_str();
   fidelity->add_option("--fem-params", fid_params,
@@ -212,8 +221,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> fit_starts;
   bool fit_quiet = false;
   auto* fit = app.add_subcommand(
-      "fit", "Fit scene parameters to a recorded run's node trajectory (Ceres least squares with exact forward "
-             "sensitivities); fit.json, convergence.csv, frames.csv");
+      "fit",
+      "Fit scene parameters to a recorded run's node trajectory (Ceres least squares with exact forward "
+      "sensitivities); fit.json, convergence.csv, frames.csv");
   fit->add_option("scene", fit_scene, "Scene file (TOML) to simulate")->required();
   fit->add_option("--target", fit_target, "Output folder of a `weavelab run` whose frames are fitted")->required();
   fit->add_option("--free", fit_free,
@@ -260,7 +270,8 @@ int main(int argc, char** argv) {
       c.run_budget_cpu_s = wp_budget;
       c.reference.cache_dir = ref_dir;
       c.reference.progress = c.progress;
-      c.out_dir = wl::output_folder(wp->count("--out") ? std::optional(wp_args.out) : std::nullopt, "results/work_precision");
+      c.out_dir =
+          wl::output_folder(wp->count("--out") ? std::optional(wp_args.out) : std::nullopt, "results/work_precision");
       const auto r = wl::run_work_precision(c);
       std::cerr << "weavelab: work-precision: " << r.rows.size() << " runs in " << r.wall_s << " s; results in "
                 << c.out_dir.string() << "\n";
@@ -274,7 +285,8 @@ int main(int argc, char** argv) {
       c.dt_max = wl::positive_option("--dt-max", st_dt_max);
       c.bisections = st_bisections;
       c.speed_bound = wl::positive_option("--speed-bound", st_bound);
-      c.out_dir = wl::output_folder(st->count("--out") ? std::optional(st_args.out) : std::nullopt, "results/stability");
+      c.out_dir =
+          wl::output_folder(st->count("--out") ? std::optional(st_args.out) : std::nullopt, "results/stability");
       const auto r = wl::run_stability(c);
       std::cerr << "weavelab: stability: " << r.rows.size() << " cells in " << r.wall_s << " s; results in "
                 << c.out_dir.string() << "\n";
@@ -294,8 +306,9 @@ int main(int argc, char** argv) {
       if (calibrate->count("--patch") && cal.patch < 1)
         throw std::invalid_argument("--patch: got " + std::to_string(cal.patch) + ", expected a number of crossings");
       for (const auto& v : cal_validate) cal.validate.emplace_back(v);
-      cal.out_dir = cal_out.empty() ? std::filesystem::path("results/calibration") / std::filesystem::path(cal_scene).stem()
-                                    : std::filesystem::path(cal_out);
+      cal.out_dir = cal_out.empty()
+                        ? std::filesystem::path("results/calibration") / std::filesystem::path(cal_scene).stem()
+                        : std::filesystem::path(cal_out);
       cal.progress = !cal_quiet;
       const wl::CalibratePlan plan = wl::plan_calibration(cal);  // every input checked; nothing written yet
       try {
@@ -320,15 +333,17 @@ int main(int argc, char** argv) {
       fid.variants = split_list(fid_variants);
       if (fidelity->count("--variants") && fid.variants.empty()) throw std::invalid_argument("--variants: empty list");
       if (!fid_params.empty()) fid.fem_params = fid_params;
-      fid.out_dir = wl::output_folder(fidelity->count("--out") ? std::optional(fid_out) : std::nullopt,
-                                      std::filesystem::path("results/fidelity") / std::filesystem::path(fid_scene).stem());
+      fid.out_dir =
+          wl::output_folder(fidelity->count("--out") ? std::optional(fid_out) : std::nullopt,
+                            std::filesystem::path("results/fidelity") / std::filesystem::path(fid_scene).stem());
       fid.progress = !fid_quiet;
       const wl::FidelityPlan plan = wl::plan_fidelity(fid);  // every input checked; nothing written yet
       try {
         const wl::FidelityResult r = wl::run_fidelity(fid, plan);
         const wl::FidelityChoice& c = r.within_tolerance;
-        std::fprintf(stderr, "weavelab: fidelity: cheapest within %.3g mm (%.3g %% of the %.3g mm cloth): %s, %.3g x "
-                             "faster than %s (CPU %.3g s against %.3g s); results in %s\n",
+        std::fprintf(stderr,
+                     "weavelab: fidelity: cheapest within %.3g mm (%.3g %% of the %.3g mm cloth): %s, %.3g x "
+                     "faster than %s (CPU %.3g s against %.3g s); results in %s\n",
                      1e3 * c.tolerance_m, 100 * c.tolerance_m / plan.cloth_size_m, 1e3 * plan.cloth_size_m,
                      c.variant.c_str(), c.speedup, plan.reference.name.c_str(), c.cpu_s, r.rows.front().cpu_s,
                      fid.out_dir.string().c_str());
@@ -347,13 +362,15 @@ int main(int argc, char** argv) {
       if (fitc.fit.free.empty()) throw std::invalid_argument("--free: empty list");
       for (const std::string& s : fit_starts) {
         const auto eq = s.find('=');
-        const std::vector<double> v = eq == std::string::npos ? std::vector<double>{}
-                                                              : split_numbers(s.substr(eq + 1), "--start " + s.substr(0, eq));
+        const std::vector<double> v = eq == std::string::npos
+                                          ? std::vector<double>{}
+                                          : split_numbers(s.substr(eq + 1), "--start " + s.substr(0, eq));
         if (v.size() != 1) throw std::invalid_argument("--start: got '" + s + "', expected KEY=VALUE with VALUE > 0");
         fitc.fit.start[s.substr(0, eq)] = v[0];
       }
       if (fit->count("--max-iterations") && fitc.fit.max_iterations < 1)
-        throw std::invalid_argument("--max-iterations: got " + std::to_string(fitc.fit.max_iterations) + ", expected >= 1");
+        throw std::invalid_argument("--max-iterations: got " + std::to_string(fitc.fit.max_iterations) +
+                                    ", expected >= 1");
       fitc.fit.progress = !fit_quiet;
       fitc.out_dir = wl::output_folder(fit->count("--out") ? std::optional(fit_out) : std::nullopt,
                                        std::filesystem::path("results/fit") / std::filesystem::path(fit_scene).stem());
@@ -363,10 +380,9 @@ int main(int argc, char** argv) {
         std::cerr << "weavelab: fit: " << r.message << "\n";
         return 1;
       }
-      std::cerr << "weavelab: fit: " << r.iterations << " iterations, " << r.simulations << " simulations, "
-                << r.wall_s << " s; RMS distance " << 1e3 * r.start_rms.back() << " mm at the start, "
-                << 1e3 * r.final_rms.back() << " mm fitted (last frame); " << r.message << "; results in "
-                << fitc.out_dir.string() << "\n";
+      std::cerr << "weavelab: fit: " << r.iterations << " iterations, " << r.simulations << " simulations, " << r.wall_s
+                << " s; RMS distance " << 1e3 * r.start_rms.back() << " mm at the start, " << 1e3 * r.final_rms.back()
+                << " mm fitted (last frame); " << r.message << "; results in " << fitc.out_dir.string() << "\n";
       for (const auto& p : r.parameters)
         std::cerr << "  " << p.key << " = " << p.value << " +- " << p.std_error << " (start " << p.start << ")\n";
       return r.converged ? 0 : 1;
@@ -385,18 +401,20 @@ int main(int argc, char** argv) {
     ov.adaptive = adaptive;
     if (run->count("--fem-params")) ov.fem_parameter_file = fem_params;
     wl::apply_run_overrides(scene, ov, opt.overrides);  // every rule before anything is written
-    opt.out_dir = wl::output_folder(run->count("--out") ? std::optional(out_dir) : std::nullopt,
-                                    std::filesystem::path("results") / std::filesystem::path(scene_path).stem() / model);
+    opt.out_dir =
+        wl::output_folder(run->count("--out") ? std::optional(out_dir) : std::nullopt,
+                          std::filesystem::path("results") / std::filesystem::path(scene_path).stem() / model);
     wl::install_interrupt_handlers();
     wl::RunReport rep = wl::run_scene(scene, opt);
     if (rep.result.outcome == wl::Outcome::interrupted) {
-      std::cerr << "weavelab: " << rep.result.message << " at t = " << rep.end_time << " s; frames, metrics and summary in "
-                << opt.out_dir.string() << "\n";
+      std::cerr << "weavelab: " << rep.result.message << " at t = " << rep.end_time
+                << " s; frames, metrics and summary in " << opt.out_dir.string() << "\n";
       return wl::interrupted_exit_code(wl::interrupt_signal());
     }
     if (rep.result.outcome != wl::Outcome::ok) {
-      std::cerr << "weavelab: run ended with outcome '" << wl::to_string(rep.result.outcome) << "' at t = " << rep.end_time
-                << " s: " << rep.result.message << " (summary in " << opt.out_dir.string() << ")\n";
+      std::cerr << "weavelab: run ended with outcome '" << wl::to_string(rep.result.outcome)
+                << "' at t = " << rep.end_time << " s: " << rep.result.message << " (summary in "
+                << opt.out_dir.string() << ")\n";
       return rep.result.outcome == wl::Outcome::not_offered ? 2 : 1;
     }
     return 0;

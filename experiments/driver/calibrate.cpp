@@ -86,10 +86,11 @@ Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
 
 namespace {
 
-double mean(const std::vector<double>& x) { return x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / x.size(); }
+double mean(const std::vector<double>& x) {
+  return x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / x.size();
+}
 double maximum(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end()); }
 double cpu_per_step(const RecordedRun& r) { return r.stats.steps > 0 ? r.cpu_s / r.stats.steps : 0.0; }
-
 
 }  // namespace
 
@@ -118,9 +119,9 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
     if (t.ladder.size() < 2) throw std::invalid_argument("--ladder " + name + ": need at least 2 loads");
     for (size_t i = 0; i < t.ladder.size(); ++i)
       if (!(t.ladder[i] > 0) || !std::isfinite(t.ladder[i]) || (i > 0 && !(t.ladder[i] > t.ladder[i - 1])))
-        throw std::invalid_argument("--ladder " + name + ": got " + std::to_string(t.ladder[i]) +
-                                    " at position " + std::to_string(i + 1) +
-                                    ", expected increasing finite loads > 0 [" + load_unit(kind) + "]");
+        throw std::invalid_argument("--ladder " + name + ": got " + std::to_string(t.ladder[i]) + " at position " +
+                                    std::to_string(i + 1) + ", expected increasing finite loads > 0 [" +
+                                    load_unit(kind) + "]");
     if (kind == TestKind::shear && t.ladder.back() >= 1.5)
       throw std::invalid_argument("--ladder shear: shear angles must stay below 1.5 rad, got " +
                                   std::to_string(t.ladder.back()));
@@ -159,8 +160,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     if (c.progress)
       std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(t.kind).c_str(), r.points.size(),
                    t.ladder.size(), r.complete ? "" : ", stopped:", r.message.c_str());
-    if (r.points.size() < 2)
-      throw std::runtime_error("yarn-level test did not converge: " + r.message);
+    if (r.points.size() < 2) throw std::runtime_error("yarn-level test did not converge: " + r.message);
     FitCurve fc{{t.kind, {}}, {}};
     for (const ResponsePoint& pt : r.points) {
       fc.test.ladder.push_back(pt.load);
@@ -262,8 +262,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     Json vars = Json::array();
     for (const auto& [name, m] : variants) {
       if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
-      const VariantRun vr = run_continuum_variant(name, with_material(vs, m, c.border_strip && name != "first_guess"), yarn, iopt,
-                                                  c.progress);
+      const VariantRun vr = run_continuum_variant(name, with_material(vs, m, c.border_strip && name != "first_guess"),
+                                                  yarn, iopt, c.progress);
       for (size_t k = 0; k < vr.times.size(); ++k)
         vcsv->row({label, name, csv_number(vr.times[k]), csv_number(vr.rms[k]), csv_number(vr.max[k])});
       Json j = Json::object();
@@ -292,16 +292,16 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   std::ostringstream rms;
   for (size_t i = 0; i < curves.size(); ++i)
     rms << (i ? ", " : "") << test_name(curves[i].test.kind) << " " << out.fit.relative_rms[i];
-  write_fem_parameter_file((c.out_dir / "params.toml").string(), calibrated,
-                           {{"source_scene", c.scene_path.string()},
-                            {"source_scene_hash", reference_hash(p.scene_text)},
-                            {"git_revision", git_revision()},
-                            {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
-                            {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene"
-                                                            : "false"},
-                            {"residual_rms_relative", rms.str()},
-                            {"areal_density", "total yarn mass of the scene over the crossing grid's area"},
-                            {"created", utc_now()}});
+  write_fem_parameter_file(
+      (c.out_dir / "params.toml").string(), calibrated,
+      {{"source_scene", c.scene_path.string()},
+       {"source_scene_hash", reference_hash(p.scene_text)},
+       {"git_revision", git_revision()},
+       {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
+       {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene" : "false"},
+       {"residual_rms_relative", rms.str()},
+       {"areal_density", "total yarn mass of the scene over the crossing grid's area"},
+       {"created", utc_now()}});
 
   // calibration.json
   Json j = Json::object();
@@ -330,7 +330,9 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   density.set("value", calibrated.areal_density_kg_per_m2);
   density.set("std_error", nullptr);
   density.set("at_bound", false);
-  density.set("note", "not fitted: static tests cannot see mass; set so that the continuum carries the yarn level's total mass");
+  density.set(
+      "note",
+      "not fitted: static tests cannot see mass; set so that the continuum carries the yarn level's total mass");
   params.push(std::move(density));
   j.set("parameters", std::move(params));
   Json corr = Json::array();

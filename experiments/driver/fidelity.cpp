@@ -141,8 +141,7 @@ FidelityChoice cheapest_within(const std::vector<FidelityRow>& rows, double tole
   c.tolerance_m = tolerance;
   const FidelityRow* best = nullptr;
   for (const FidelityRow& r : rows)
-    if (r.complete() && r.worst_frame_rms_m <= tolerance && (!best || r.cpu_s < best->cpu_s))
-      best = &r;
+    if (r.complete() && r.worst_frame_rms_m <= tolerance && (!best || r.cpu_s < best->cpu_s)) best = &r;
   if (best) {
     c.variant = best->variant;
     c.cpu_s = best->cpu_s;

@@ -21,13 +21,13 @@ namespace wl {
 
 struct FidelityConfig {
   std::filesystem::path scene_path;
-  Scene scene;                                  // as loaded, command-line overrides applied
-  std::map<std::string, std::string> overrides;  // recorded in the JSON
-  std::string reference = "full";               // a yarn-level variant
-  std::vector<std::string> variants;            // empty: the whole ladder
+  Scene scene;                                      // as loaded, command-line overrides applied
+  std::map<std::string, std::string> overrides;     // recorded in the JSON
+  std::string reference = "full";                   // a yarn-level variant
+  std::vector<std::string> variants;                // empty: the whole ladder
   std::optional<std::filesystem::path> fem_params;  // calibrated continuum parameters
-  std::optional<double> tolerance_m;            // absent: 1 % of the cloth size
-  int repeats = 1;                              // runs per variant; CPU and wall time are their medians
+  std::optional<double> tolerance_m;                // absent: 1 % of the cloth size
+  int repeats = 1;                                  // runs per variant; CPU and wall time are their medians
   std::filesystem::path out_dir;
   bool progress = true;
 };
@@ -39,10 +39,10 @@ struct PlannedVariant {
 
 struct FidelityPlan {
   PlannedVariant reference;
-  std::vector<PlannedVariant> variants;  // in ladder order, without the reference
+  std::vector<PlannedVariant> variants;                       // in ladder order, without the reference
   std::vector<std::pair<std::string, std::string>> left_out;  // variant, why
-  std::string calibration;  // where the calibrated parameters come from ("" = none)
-  double cloth_size_m = 0;  // (max(wefts, warps) − 1)·L
+  std::string calibration;                                    // where the calibrated parameters come from ("" = none)
+  double cloth_size_m = 0;                                    // (max(wefts, warps) − 1)·L
   double tolerance_m = 0;
 };
 
@@ -67,8 +67,8 @@ struct FidelityRow {
   double rms_m = 0, worst_frame_rms_m = 0, max_m = 0;
   // max over frames of |ΔE_variant − ΔE_reference|, ΔE = (T + V)(t) − (T + V)(0), each model's own V [J]
   double energy_diff_J = 0;
-  double compared_fraction = 0;   // compared points / (reference frames × crossings)
-  bool on_front = false;          // Pareto front of (cpu_s, worst_frame_rms_m) among the complete runs
+  double compared_fraction = 0;  // compared points / (reference frames × crossings)
+  bool on_front = false;         // Pareto front of (cpu_s, worst_frame_rms_m) among the complete runs
   bool complete() const { return outcome == "ok" && compared_fraction > 0; }
 };
 
@@ -76,7 +76,7 @@ struct FidelityChoice {
   double tolerance_m = 0;
   std::string variant;  // cheapest complete variant with worst_frame_rms_m ≤ tolerance
   double cpu_s = 0;
-  double speedup = 0;   // reference CPU time / the variant's
+  double speedup = 0;  // reference CPU time / the variant's
 };
 
 struct FidelityResult {

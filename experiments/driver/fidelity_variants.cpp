@@ -21,8 +21,9 @@ bool stride_fits(const Scene& s, int k) {
 }  // namespace
 
 const std::vector<std::string>& fidelity_variant_names() {
-  static const std::vector<std::string> names{"full",   "no_friction", "no_parallel_contact", "linear_shear",
-                                              "frozen_sliding", "fem_s1", "fem_s2", "fem_s4", "fem_first_guess"};
+  static const std::vector<std::string> names{"full",         "no_friction",    "no_parallel_contact",
+                                              "linear_shear", "frozen_sliding", "fem_s1",
+                                              "fem_s2",       "fem_s4",         "fem_first_guess"};
   return names;
 }
 
@@ -73,8 +74,9 @@ VariantScene variant_scene(const Scene& scene, const std::string& name, const st
     return v;
   }
   if (!calibrated) {
-    v.impossible = "no calibrated parameters: give --fem-params FILE (written by `weavelab calibrate`) or a scene "
-                   "with [fem] parameter_file";
+    v.impossible =
+        "no calibrated parameters: give --fem-params FILE (written by `weavelab calibrate`) or a scene "
+        "with [fem] parameter_file";
     return v;
   }
   v.scene = with_material(s, *calibrated, s.fem.border_strip);

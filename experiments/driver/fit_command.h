@@ -21,7 +21,7 @@ namespace wl {
 
 struct FitCommandConfig {
   std::filesystem::path scene_path, target_dir, out_dir;
-  int frames = 0;  // the target's first N frames after t = 0; 0 = all
+  int frames = 0;          // the target's first N frames after t = 0; 0 = all
   std::string fem_params;  // replaces the scene's [fem] parameter_file when given
   TrajectoryFitOptions fit;
 };

@@ -57,8 +57,9 @@ struct Interrupted {};
 
 StepResult interrupted_result() {
   const int sig = interrupt_signal();
-  return {Outcome::interrupted,
-          std::string("interrupted by ") + (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal")};
+  return {Outcome::interrupted, std::string("interrupted by ") + (sig == SIGINT    ? "SIGINT"
+                                                                  : sig == SIGTERM ? "SIGTERM"
+                                                                                   : "a signal")};
 }
 
 }  // namespace

@@ -28,9 +28,13 @@ struct Overridable {
   const char* record;
 };
 constexpr Overridable kOverridable[] = {
-    {"time.duration_s", "--duration", "duration_s"}, {"time.dt_s", "--dt", "dt_s"},
-    {"time.output_interval_s", "--output-interval", "output_interval_s"}, {"time.rtol", "--rtol", "rtol"},                 {"time.atol", "--rtol", "rtol"},
-    {"time.integrator", "--integrator", "integrator"}, {"time.adaptive", "--adaptive", "adaptive"},
+    {"time.duration_s", "--duration", "duration_s"},
+    {"time.dt_s", "--dt", "dt_s"},
+    {"time.output_interval_s", "--output-interval", "output_interval_s"},
+    {"time.rtol", "--rtol", "rtol"},
+    {"time.atol", "--rtol", "rtol"},
+    {"time.integrator", "--integrator", "integrator"},
+    {"time.adaptive", "--adaptive", "adaptive"},
     {"time.linear_solver", "--linear-solver", "linear_solver"},
 };
 
@@ -146,8 +150,9 @@ void apply_run_overrides(Scene& scene, const RunOverrides& o, std::map<std::stri
 void apply_duration_override(Scene& scene, double duration_s, std::map<std::string, std::string>& record) {
   scene.duration_s = duration_s;
   record["duration_s"] = shortest(duration_s);
-  const auto bad = time_settings_violation(
-      scene, [&](const std::string& key) { return key == "time.duration_s" ? 2 : scene.key_lines.count(key) ? 1 : 0; });
+  const auto bad = time_settings_violation(scene, [&](const std::string& key) {
+    return key == "time.duration_s" ? 2 : scene.key_lines.count(key) ? 1 : 0;
+  });
   if (bad) fail(scene, record, bad->key, bad->value, bad->expected);
 }
 

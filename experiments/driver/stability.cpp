@@ -93,8 +93,9 @@ StabilityResult run_stability(const StabilityConfig& cfg_in) {
             row.not_offered_message = run.result.message;
           }
           probes.row({model, integ, csv_number(mult), csv_number(dt), p.bounded ? "1" : "0",
-                      to_string(run.result.outcome), failure_mode(p), run.result.message, csv_number(run.max_node_speed),
-                      csv_number(run.end_time), std::to_string(run.stats.steps), csv_number(run.cpu_s)});
+                      to_string(run.result.outcome), failure_mode(p), run.result.message,
+                      csv_number(run.max_node_speed), csv_number(run.end_time), std::to_string(run.stats.steps),
+                      csv_number(run.cpu_s)});
           if (cfg.progress)
             std::fprintf(stderr, "    dt %-10s %s (%s) %.2f s CPU\n", csv_number(dt).c_str(),
                          p.bounded ? "bounded" : "unbounded", failure_mode(p).c_str(), run.cpu_s);
@@ -125,7 +126,8 @@ StabilityResult run_stability(const StabilityConfig& cfg_in) {
         const bool has_failure = row.not_offered || std::isfinite(L.smallest_unstable_dt);
         table.row({model, integ, csv_number(mult), csv_number(L.largest_stable_dt), csv_number(L.smallest_unstable_dt),
                    has_failure ? mode : "", has_failure ? to_string(L.failure.result.outcome) : "",
-                   has_failure ? L.failure.result.message : "", std::to_string(L.probes.size()), csv_number(row.cpu_s)});
+                   has_failure ? L.failure.result.message : "", std::to_string(L.probes.size()),
+                   csv_number(row.cpu_s)});
         if (cfg.progress)
           std::fprintf(stderr, "  -> largest bounded dt %s s, failure above: %s (%.1f s CPU)\n",
                        csv_number(L.largest_stable_dt).c_str(), has_failure ? mode.c_str() : "none up to dt_max",
@@ -150,8 +152,9 @@ StabilityResult run_stability(const StabilityConfig& cfg_in) {
   p.set("bisections", cfg.bisections);
   p.set("speed_bound_m_per_s", cfg.speed_bound);
   p.set("bounded", "outcome ok and max node speed below speed_bound at every accepted step, over the scene duration");
-  p.set("fixed_steps", "IntegratorOptions.adaptive = false; ida (if listed) then caps its step at dt with error "
-                       "control at the scene's rtol/atol");
+  p.set("fixed_steps",
+        "IntegratorOptions.adaptive = false; ida (if listed) then caps its step at dt with error "
+        "control at the scene's rtol/atol");
   j.set("parameters", p);
   j.set("cells", static_cast<long>(res.rows.size()));
   j.set("started_utc", started);

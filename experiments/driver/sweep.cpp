@@ -58,8 +58,7 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
       if (std::chrono::duration<double>(now - last_report).count() >= 5.0) {
         last_report = now;
         std::fprintf(stderr, "    %s t = %.4g / %.4g s, %ld steps, %.0f s\n", record.label.c_str(), r.t,
-                     scene.duration_s, integrator->stats().steps,
-                     std::chrono::duration<double>(now - start).count());
+                     scene.duration_s, integrator->stats().steps, std::chrono::duration<double>(now - start).count());
       }
     }
   };
@@ -73,8 +72,8 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
   for (double t_out : times) {
     timed([&] { run.result = integrator->advance_to(t_out); });
     if (run.result.outcome == Outcome::ok && run.max_node_speed > record.speed_bound)
-      run.result = {Outcome::diverged, "max node speed " + std::to_string(run.max_node_speed) + " m/s exceeds the bound " +
-                                           std::to_string(record.speed_bound) + " m/s"};
+      run.result = {Outcome::diverged, "max node speed " + std::to_string(run.max_node_speed) +
+                                           " m/s exceeds the bound " + std::to_string(record.speed_bound) + " m/s"};
     if (run.result.outcome != Outcome::ok) break;
     const Frame f = model->frame(integrator->t(), integrator->q(), integrator->v());
     run.trajectory.times.push_back(t_out);
@@ -112,7 +111,8 @@ ErrorNorms trajectory_error(const Trajectory& run, const Trajectory& reference) 
   double sum = 0.0;
   for (Eigen::Index k = 0; k < cols; ++k)
     for (int n = 0; n < nodes; ++n) {
-      const double d2 = (run.positions.col(k).segment<3>(3 * n) - reference.positions.col(k).segment<3>(3 * n)).squaredNorm();
+      const double d2 =
+          (run.positions.col(k).segment<3>(3 * n) - reference.positions.col(k).segment<3>(3 * n)).squaredNorm();
       sum += d2;
       e.max = std::max(e.max, std::sqrt(d2));
     }
@@ -245,7 +245,8 @@ Reference load_or_compute_reference(const Scene& scene, const std::string& scene
     std::string attempt = "rtol=" + format_g(rtol) + ": " + to_string(run.result.outcome);
     if (!run.result.message.empty()) attempt += ": " + run.result.message;
     ref.attempts.push_back(attempt);
-    if (options.progress) std::fprintf(stderr, "  reference %s: %s (%.1f s CPU)\n", model_name.c_str(), attempt.c_str(), run.cpu_s);
+    if (options.progress)
+      std::fprintf(stderr, "  reference %s: %s (%.1f s CPU)\n", model_name.c_str(), attempt.c_str(), run.cpu_s);
     if (run.result.outcome != Outcome::ok) continue;
     ref.trajectory = std::move(run.trajectory);
     ref.rtol = opt.rtol;
@@ -262,8 +263,8 @@ Reference load_or_compute_reference(const Scene& scene, const std::string& scene
 
 // ---- Stability ------------------------------------------------------------
 
-StabilityLimit find_stability_limit(const std::function<StabilityProbe(double dt)>& probe, double dt_min,
-                                    double dt_max, int bisections) {
+StabilityLimit find_stability_limit(const std::function<StabilityProbe(double dt)>& probe, double dt_min, double dt_max,
+                                    int bisections) {
   if (!(dt_min > 0) || !(dt_max > dt_min))
     throw std::invalid_argument("find_stability_limit: need 0 < dt_min < dt_max, got " + format_g(dt_min) + ", " +
                                 format_g(dt_max));

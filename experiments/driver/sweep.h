@@ -36,14 +36,14 @@ struct Trajectory {
 std::vector<double> output_times(const Scene& scene);
 
 struct RecordedRun {
-  StepResult result;           // outcome, message and, for a SUNDIALS failure, its flag
-  IntegratorStats stats;       // the integrator's own statistics
-  double cpu_s = 0.0;          // process CPU time of initialize + advance_to (all threads), frames excluded
-  double wall_s = 0.0;         // wall time of the same
-  double end_time = 0.0;       // time reached
-  double max_node_speed = 0.0; // largest Model::max_node_speed over all accepted steps [m/s]
+  StepResult result;            // outcome, message and, for a SUNDIALS failure, its flag
+  IntegratorStats stats;        // the integrator's own statistics
+  double cpu_s = 0.0;           // process CPU time of initialize + advance_to (all threads), frames excluded
+  double wall_s = 0.0;          // wall time of the same
+  double end_time = 0.0;        // time reached
+  double max_node_speed = 0.0;  // largest Model::max_node_speed over all accepted steps [m/s]
   int dofs = 0;
-  Trajectory trajectory;       // the output times reached
+  Trajectory trajectory;  // the output times reached
   // Kinetic ½vᵀM(q)v and potential energy at the output times reached, when
   // RecordOptions::energies (outside the timed sections) [J].
   std::vector<double> kinetic_J, potential_J;
@@ -81,21 +81,21 @@ ErrorNorms trajectory_error(const Trajectory& run, const Trajectory& reference);
 struct ReferenceOptions {
   std::filesystem::path cache_dir = "results/reference";
   std::string integrator = "ida";
-  std::vector<double> rtols = {1e-10, 1e-9};  // tried in order; the first that converges is used
-  double required_rtol = 1e-9;                // a reference looser than this is reported (and flagged)
-  double atol_per_rtol = 1e-3;                // atol = rtol × this [m, m/s]
-  double initial_dt = 1e-6;                   // initial step hint [s]
+  std::vector<double> rtols = {1e-10, 1e-9};       // tried in order; the first that converges is used
+  double required_rtol = 1e-9;                     // a reference looser than this is reported (and flagged)
+  double atol_per_rtol = 1e-3;                     // atol = rtol × this [m, m/s]
+  double initial_dt = 1e-6;                        // initial step hint [s]
   long max_steps = IntegratorOptions{}.max_steps;  // per attempt; beyond it the attempt fails (max_steps)
   bool progress = true;
 };
 
 struct Reference {
   Trajectory trajectory;
-  std::string hash;                // 16 hex digits
-  std::filesystem::path file;      // <cache_dir>/<hash>.bin
+  std::string hash;            // 16 hex digits
+  std::filesystem::path file;  // <cache_dir>/<hash>.bin
   bool from_cache = false;
-  double rtol = 0.0, atol = 0.0;   // the tolerances that converged
-  double cpu_s = 0.0;              // CPU time of the run that produced it (also when read from the cache)
+  double rtol = 0.0, atol = 0.0;      // the tolerances that converged
+  double cpu_s = 0.0;                 // CPU time of the run that produced it (also when read from the cache)
   std::vector<std::string> attempts;  // "rtol=1e-10: ok" / "rtol=1e-10: step_too_small: …" (this call only)
   bool meets_requirement() const { return rtol > 0 && rtol <= 1.0000001 * required_rtol; }
   double required_rtol = 1e-9;
@@ -127,8 +127,8 @@ bool read_reference_file(const std::filesystem::path& path, const std::string& k
 
 struct StabilityProbe {
   bool bounded = false;
-  StepResult result;        // outcome of the run (ok when bounded)
-  double max_speed = 0.0;   // [m/s]
+  StepResult result;       // outcome of the run (ok when bounded)
+  double max_speed = 0.0;  // [m/s]
 };
 
 struct StabilityLimit {
@@ -136,7 +136,7 @@ struct StabilityLimit {
   // unbounded (NaN when dt_max is bounded: the limit is ≥ dt_max).
   double largest_stable_dt = std::numeric_limits<double>::quiet_NaN();
   double smallest_unstable_dt = std::numeric_limits<double>::quiet_NaN();
-  StabilityProbe failure;  // the probe at smallest_unstable_dt
+  StabilityProbe failure;                                 // the probe at smallest_unstable_dt
   std::vector<std::pair<double, StabilityProbe>> probes;  // in the order run
 };
 
@@ -144,8 +144,8 @@ struct StabilityLimit {
 // done); otherwise `bisections` geometric midpoints narrow [lo, hi] with lo
 // assumed bounded; when no probe was bounded, dt_min itself is probed. Assumes
 // the predicate is monotone (bounded below a threshold).
-StabilityLimit find_stability_limit(const std::function<StabilityProbe(double dt)>& probe, double dt_min,
-                                    double dt_max, int bisections);
+StabilityLimit find_stability_limit(const std::function<StabilityProbe(double dt)>& probe, double dt_min, double dt_max,
+                                    int bisections);
 
 // The scene with every yarn type's stretch_modulus_Pa multiplied by `factor`,
 // and the FEM stretch stiffnesses (warp/weft, N/m) set to `factor` × their

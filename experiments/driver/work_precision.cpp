@@ -15,12 +15,29 @@
 
 namespace wl {
 
-const std::vector<std::string> kWorkPrecisionColumns = {
-    "model",          "integrator",    "mode",          "rtol",          "atol",
-    "dt_s",           "outcome",       "sundials_flag", "message",       "error_rms_m",
-    "error_max_m",    "cpu_s",         "wall_s",        "steps",         "rejected_steps",
-    "rhs_evals",      "jac_evals",     "linear_setups", "linear_solves", "nonlinear_iters",
-    "max_node_speed_m_per_s", "end_time_s", "dofs"};
+const std::vector<std::string> kWorkPrecisionColumns = {"model",
+                                                        "integrator",
+                                                        "mode",
+                                                        "rtol",
+                                                        "atol",
+                                                        "dt_s",
+                                                        "outcome",
+                                                        "sundials_flag",
+                                                        "message",
+                                                        "error_rms_m",
+                                                        "error_max_m",
+                                                        "cpu_s",
+                                                        "wall_s",
+                                                        "steps",
+                                                        "rejected_steps",
+                                                        "rhs_evals",
+                                                        "jac_evals",
+                                                        "linear_setups",
+                                                        "linear_solves",
+                                                        "nonlinear_iters",
+                                                        "max_node_speed_m_per_s",
+                                                        "end_time_s",
+                                                        "dofs"};
 
 namespace {
 
@@ -114,10 +131,9 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
         if (std::isfinite(last_cpu)) {
           const double growth = std::isfinite(prev_cpu) && prev_cpu > 0 ? std::max(1.5, last_cpu / prev_cpu) : 2.0;
           if (last_cpu * growth > cfg.run_budget_cpu_s) {
-            const std::string note = model + " " + integ + ": ladder stopped before " +
-                                     (adaptive ? "rtol " : "dt ") + csv_number(rungs[k]) + " (predicted " +
-                                     csv_number(last_cpu * growth) + " s CPU > budget " +
-                                     csv_number(cfg.run_budget_cpu_s) + " s)";
+            const std::string note = model + " " + integ + ": ladder stopped before " + (adaptive ? "rtol " : "dt ") +
+                                     csv_number(rungs[k]) + " (predicted " + csv_number(last_cpu * growth) +
+                                     " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s)";
             res.notes.push_back(note);
             if (cfg.progress) std::fprintf(stderr, "  %s\n", note.c_str());
             break;
@@ -163,10 +179,10 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
           if (per_step * 10.0 * cap > cfg.run_budget_cpu_s) {
             row.over_budget = true;
             row.predicted_cpu_s = predicted;
-            row.run.result.message = "stopped at a pilot limit of " + std::to_string(cap) + " steps at t = " +
-                                     csv_number(row.run.end_time) + " s after " + csv_number(row.run.cpu_s) +
-                                     " s CPU; the full run extrapolates to " + csv_number(predicted) +
-                                     " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s";
+            row.run.result.message =
+                "stopped at a pilot limit of " + std::to_string(cap) + " steps at t = " + csv_number(row.run.end_time) +
+                " s after " + csv_number(row.run.cpu_s) + " s CPU; the full run extrapolates to " +
+                csv_number(predicted) + " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s";
             break;
           }
           cap *= 10;
@@ -176,8 +192,7 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
         if (cfg.progress)
           std::fprintf(stderr, "  %-4s %-12s %s %-8s %-14s err rms %.3g m, max %.3g m, %.2f s CPU, %ld steps\n",
                        model.c_str(), integ.c_str(), adaptive ? "rtol" : "dt  ", csv_number(rungs[k]).c_str(),
-                       row.outcome().c_str(), row.error.rms, row.error.max, row.run.cpu_s,
-                       row.run.stats.steps);
+                       row.outcome().c_str(), row.error.rms, row.error.max, row.run.cpu_s, row.run.stats.steps);
         csv.row(csv_row(row));
         const Outcome o = row.run.result.outcome;
         const bool over = row.over_budget;
@@ -214,8 +229,9 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
   p.set("run_budget_cpu_s", cfg.run_budget_cpu_s);
   p.set("pilot_steps", cfg.pilot_steps);
   p.set("speed_bound_m_per_s", cfg.speed_bound);
-  p.set("error", "RMS and max over nodes and output times t_k = k*output_interval_s (k >= 1) of the node position "
-                 "difference to the reference [m]");
+  p.set("error",
+        "RMS and max over nodes and output times t_k = k*output_interval_s (k >= 1) of the node position "
+        "difference to the reference [m]");
   p.set("cpu_time", "process CPU time (all threads) of initialize + advance_to, frame extraction excluded");
   Json rp = Json::object();
   rp.set("integrator", cfg.reference.integrator);

@@ -17,9 +17,9 @@
 namespace wl {
 
 struct WorkPrecisionConfig {
-  std::filesystem::path scene_path;  // for the metadata; the text below is what counts
-  std::string scene_text;            // the scene file's text (reference hash, metadata)
-  Scene scene;                       // parsed, with the overrides applied
+  std::filesystem::path scene_path;              // for the metadata; the text below is what counts
+  std::string scene_text;                        // the scene file's text (reference hash, metadata)
+  Scene scene;                                   // parsed, with the overrides applied
   std::map<std::string, std::string> overrides;  // e.g. duration_s (part of the reference hash)
   std::vector<std::string> models = {"yarn", "fem"};
   std::vector<std::string> integrators;  // default: integrator_names()
@@ -54,9 +54,9 @@ struct WorkPrecisionRow {
   std::string model, integrator, mode;  // mode: "adaptive" | "fixed"
   double rtol = 0, atol = 0, dt = 0;    // rtol/atol for adaptive, dt for fixed (NaN when not used)
   RecordedRun run;
-  ErrorNorms error;                     // NaN when the run did not end ok
-  bool over_budget = false;             // stopped at the pilot step limit (see run_budget_cpu_s)
-  double predicted_cpu_s = 0.0;         // extrapolated full-run CPU time when over_budget
+  ErrorNorms error;              // NaN when the run did not end ok
+  bool over_budget = false;      // stopped at the pilot step limit (see run_budget_cpu_s)
+  double predicted_cpu_s = 0.0;  // extrapolated full-run CPU time when over_budget
   std::string outcome() const { return over_budget ? "over_budget" : to_string(run.result.outcome); }
 };
 

@@ -24,10 +24,19 @@ size_t utf8_length(std::string_view s, size_t i) {
   unsigned min;
   unsigned cp;
   if (c < 0x80) return 1;
-  if ((c & 0xE0) == 0xC0) { n = 2; cp = c & 0x1F; min = 0x80; }
-  else if ((c & 0xF0) == 0xE0) { n = 3; cp = c & 0x0F; min = 0x800; }
-  else if ((c & 0xF8) == 0xF0) { n = 4; cp = c & 0x07; min = 0x10000; }
-  else return 0;
+  if ((c & 0xE0) == 0xC0) {
+    n = 2;
+    cp = c & 0x1F;
+    min = 0x80;
+  } else if ((c & 0xF0) == 0xE0) {
+    n = 3;
+    cp = c & 0x0F;
+    min = 0x800;
+  } else if ((c & 0xF8) == 0xF0) {
+    n = 4;
+    cp = c & 0x07;
+    min = 0x10000;
+  } else return 0;
   if (i + n > s.size()) return 0;
   for (size_t k = 1; k < n; ++k) {
     if ((byte(i + k) & 0xC0) != 0x80) return 0;
@@ -68,13 +77,34 @@ std::string json_quote(std::string_view text) {
     const char c = text[i];
     const auto u = static_cast<unsigned char>(c);
     switch (c) {
-      case '"': out += "\\\""; ++i; continue;
-      case '\\': out += "\\\\"; ++i; continue;
-      case '\n': out += "\\n"; ++i; continue;
-      case '\r': out += "\\r"; ++i; continue;
-      case '\t': out += "\\t"; ++i; continue;
-      case '\b': out += "\\b"; ++i; continue;
-      case '\f': out += "\\f"; ++i; continue;
+      case '"':
+        out += "\\\"";
+        ++i;
+        continue;
+      case '\\':
+        out += "\\\\";
+        ++i;
+        continue;
+      case '\n':
+        out += "\\n";
+        ++i;
+        continue;
+      case '\r':
+        out += "\\r";
+        ++i;
+        continue;
+      case '\t':
+        out += "\\t";
+        ++i;
+        continue;
+      case '\b':
+        out += "\\b";
+        ++i;
+        continue;
+      case '\f':
+        out += "\\f";
+        ++i;
+        continue;
       default: break;
     }
     if (u < 0x20 || u == 0x7F) {
@@ -133,9 +163,7 @@ Json& Json::push(Json value) {
   return *this;
 }
 
-size_t Json::size() const {
-  return kind_ == Kind::array ? items_.size() : kind_ == Kind::object ? members_.size() : 0;
-}
+size_t Json::size() const { return kind_ == Kind::array ? items_.size() : kind_ == Kind::object ? members_.size() : 0; }
 
 std::string Json::dump(int indent) const {
   std::string out;
@@ -152,7 +180,10 @@ void Json::dump_to(std::string& out, int indent, int depth) const {
     case Kind::number: append_number(out, number_); return;
     case Kind::string: out += json_quote(string_); return;
     case Kind::array: {
-      if (items_.empty()) { out += "[]"; return; }
+      if (items_.empty()) {
+        out += "[]";
+        return;
+      }
       bool flat = true;  // arrays of scalars on one line: [0, 0, -9.81]
       for (const Json& j : items_) flat = flat && !j.is_container();
       out += '[';
@@ -166,7 +197,10 @@ void Json::dump_to(std::string& out, int indent, int depth) const {
       return;
     }
     case Kind::object: {
-      if (members_.empty()) { out += "{}"; return; }
+      if (members_.empty()) {
+        out += "{}";
+        return;
+      }
       out += '{';
       for (size_t k = 0; k < members_.size(); ++k) {
         if (k) out += ',';

@@ -30,8 +30,16 @@ class Json {
   Json(const std::vector<std::string>& xs);                 // array of strings
   Json(const std::map<std::string, std::string>& entries);  // object of strings
 
-  static Json object() { Json j; j.kind_ = Kind::object; return j; }
-  static Json array() { Json j; j.kind_ = Kind::array; return j; }
+  static Json object() {
+    Json j;
+    j.kind_ = Kind::object;
+    return j;
+  }
+  static Json array() {
+    Json j;
+    j.kind_ = Kind::array;
+    return j;
+  }
 
   Kind kind() const { return kind_; }
   // Object: sets `key` (replacing an existing value, keeping its position). Throws

@@ -32,9 +32,8 @@ MetricsCsv::MetricsCsv(std::filesystem::path path, std::vector<std::string> colu
 
 void MetricsCsv::row(const std::vector<double>& values) {
   if (values.size() != columns_.size())
-    throw std::invalid_argument("MetricsCsv '" + file_.path().string() + "': row has " +
-                                std::to_string(values.size()) + " values, expected " +
-                                std::to_string(columns_.size()) + " (one per column)");
+    throw std::invalid_argument("MetricsCsv '" + file_.path().string() + "': row has " + std::to_string(values.size()) +
+                                " values, expected " + std::to_string(columns_.size()) + " (one per column)");
   std::string line;
   line.reserve(25 * values.size());
   char buf[32];

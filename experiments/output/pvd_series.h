@@ -23,8 +23,8 @@ class PvdSeries {
 
   int size() const { return static_cast<int>(times_.size()); }
   std::filesystem::path pvd_path() const;
-  std::filesystem::path frame_path(int index) const;         // absolute-ish: dir/frames/<basename>_NNNNN.vtu
-  std::string relative_frame_path(int index) const;         // as listed in the .pvd: frames/<basename>_NNNNN.vtu
+  std::filesystem::path frame_path(int index) const;  // absolute-ish: dir/frames/<basename>_NNNNN.vtu
+  std::string relative_frame_path(int index) const;   // as listed in the .pvd: frames/<basename>_NNNNN.vtu
 
  private:
   std::string pvd_text() const;

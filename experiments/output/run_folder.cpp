@@ -21,7 +21,8 @@ RunFolder::RunFolder(std::filesystem::path dir, const std::function<bool(const s
   if (ec) throw std::runtime_error("cannot create output folder '" + dir_.string() + "': " + ec.message());
   const fs::path lock = dir_ / kLockName;
   lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0) throw std::runtime_error("cannot create lock file '" + lock.string() + "': " + std::strerror(errno));
+  if (lock_fd_ < 0)
+    throw std::runtime_error("cannot create lock file '" + lock.string() + "': " + std::strerror(errno));
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
     char pid[32] = {};

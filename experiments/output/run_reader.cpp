@@ -32,13 +32,14 @@ int line_of(const std::string& text, size_t pos) {
 }
 
 // The numbers of the DataArray named `name`; false when there is none.
-bool data_array(const std::string& text, const std::filesystem::path& file, const std::string& name,
-                size_t count, std::vector<double>& values) {
+bool data_array(const std::string& text, const std::filesystem::path& file, const std::string& name, size_t count,
+                std::vector<double>& values) {
   const size_t at = text.find("Name=\"" + name + "\"");
   if (at == std::string::npos) return false;
   const size_t open_end = text.find('>', at), close = text.find("</DataArray>", at);
   if (open_end == std::string::npos || close == std::string::npos)
-    throw RunReadError(file.string() + ":" + std::to_string(line_of(text, at)) + ": array '" + name + "' is not closed");
+    throw RunReadError(file.string() + ":" + std::to_string(line_of(text, at)) + ": array '" + name +
+                       "' is not closed");
   values.clear();
   values.reserve(count);
   const char* p = text.c_str() + open_end + 1;
@@ -48,7 +49,10 @@ bool data_array(const std::string& text, const std::filesystem::path& file, cons
     errno = 0;
     const double x = std::strtod(p, &next);
     if (next == p) {
-      if (std::isspace(static_cast<unsigned char>(*p))) { ++p; continue; }
+      if (std::isspace(static_cast<unsigned char>(*p))) {
+        ++p;
+        continue;
+      }
       throw RunReadError(file.string() + ":" + std::to_string(line_of(text, p - text.c_str())) + ": array '" + name +
                          "' holds a value that is not a number");
     }

@@ -13,8 +13,8 @@ namespace wl {
 
 struct RecordedFrame {
   double time = 0.0;
-  Eigen::MatrixXd points;      // n × 3
-  std::vector<double> u, v;    // per point, empty when the frame has no such arrays
+  Eigen::MatrixXd points;    // n × 3
+  std::vector<double> u, v;  // per point, empty when the frame has no such arrays
 };
 
 class RunReadError : public std::invalid_argument {  // bad input: exit 2

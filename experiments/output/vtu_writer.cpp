@@ -20,12 +20,12 @@ void append_int(std::string& out, long long x) {
 
 void check_array(const DataArray& a, long long entries, const char* where) {
   if (a.components < 1)
-    throw std::invalid_argument(std::string("to_vtu: ") + where + " array '" + a.name +
-                                "' has NumberOfComponents " + std::to_string(a.components) + ", expected >= 1");
+    throw std::invalid_argument(std::string("to_vtu: ") + where + " array '" + a.name + "' has NumberOfComponents " +
+                                std::to_string(a.components) + ", expected >= 1");
   if (static_cast<long long>(a.values.size()) != entries * a.components)
     throw std::invalid_argument(std::string("to_vtu: ") + where + " array '" + a.name + "' has " +
-                                std::to_string(a.values.size()) + " values, expected " +
-                                std::to_string(entries) + " entries x " + std::to_string(a.components) +
+                                std::to_string(a.values.size()) + " values, expected " + std::to_string(entries) +
+                                " entries x " + std::to_string(a.components) +
                                 " components = " + std::to_string(entries * a.components));
 }
 

@@ -54,7 +54,8 @@ void WindTerm::evaluate(int, const double* q, const double* v, const ElementOutp
 
   if (out.dfdq) {
     const Mat3 P = Mat3::Identity() - n * n.transpose();
-    const Mat3 dF_dN = 0.5 * (drag_ * vr + psi * n) * n.transpose() + 0.5 * dpsi * n * (vr.transpose() * P) + 0.5 * psi * P;
+    const Mat3 dF_dN =
+        0.5 * (drag_ * vr + psi * n) * n.transpose() + 0.5 * dpsi * n * (vr.transpose() * P) + 0.5 * psi * P;
     const Mat3 E1 = cross_matrix(e1), E2 = cross_matrix(e2);
     const Mat3 dN[3] = {E2 - E1, -E2, E1};
     Eigen::Map<Eigen::Matrix<double, 9, 9>> K(out.dfdq);

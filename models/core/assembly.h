@@ -35,8 +35,8 @@ class Assembly {
 
   // Adds the contributions of every term of the given stage to f and, where
   // requested, to the matrices (which must have pattern()'s structure).
-  void add_stage(int stage, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
-                 Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const;
+  void add_stage(int stage, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req, Vec& f,
+                 SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const;
 
   // Potential energy of all conservative terms.
   double energy(const Vec& q, const Vec& constants) const;

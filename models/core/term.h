@@ -76,8 +76,8 @@ class Term {
   virtual void mass_parameter_derivative(int /*e*/, int /*k*/, const double* /*q*/, double* /*dmdp*/) const {}
   // Directional derivative of the element's mass block, (∂M/∂q)·dq (n×n, added
   // into dm), for terms whose mass depends on q (docs/models.md §9.2).
-  virtual void mass_directional_derivative(int /*e*/, const double* /*q*/, const double* /*dq*/,
-                                           double* /*dm*/) const {}
+  virtual void mass_directional_derivative(int /*e*/, const double* /*q*/, const double* /*dq*/, double* /*dm*/) const {
+  }
 };
 
 // Helper base for terms whose elements all have N local DoFs: stores stencils

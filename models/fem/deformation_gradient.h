@@ -32,8 +32,8 @@ inline TriangleRest triangle_rest(const Vec2& uv0, const Vec2& uv1, const Vec2& 
   const double det = pu1 * pv2 - pu2 * pv1;
   const double scale = (uv1 - uv0).squaredNorm() + (uv2 - uv0).squaredNorm();
   if (!(det > 1e-12 * scale) || !std::isfinite(det))
-    throw std::invalid_argument("triangle_rest: degenerate or clockwise UV triangle (UV_det = " +
-                                std::to_string(det) + ")");
+    throw std::invalid_argument("triangle_rest: degenerate or clockwise UV triangle (UV_det = " + std::to_string(det) +
+                                ")");
   TriangleRest r;
   // w_u = (dx1·pv2 − dx2·pv1)/det, w_v = (−dx1·pu2 + dx2·pu1)/det  (the Optitex note)
   r.a = {(pv1 - pv2) / det, pv2 / det, -pv1 / det};

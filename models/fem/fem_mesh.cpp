@@ -207,8 +207,9 @@ FemMesh read_vtu_mesh(const std::string& path) {
   const XmlArray* uv = p.find("PointData", "uv");
   if (!uv) uv = p.find("PointData", "obj:vt");
   if (!uv)
-    p.fail(p.piece_line_, "no point-data array \"uv\" (rest material coordinates in metres, 2 components); "
-                          "see experiments/scenes/README_fem.md");
+    p.fail(p.piece_line_,
+           "no point-data array \"uv\" (rest material coordinates in metres, 2 components); "
+           "see experiments/scenes/README_fem.md");
   if (uv->components < 2 || static_cast<long long>(uv->values.size()) != static_cast<long long>(uv->components) * n)
     p.fail(uv->line, "point data '" + uv->name + "': expected " + std::to_string(n) + " entries × 2 components, got " +
                          std::to_string(uv->values.size()) + " values in " + std::to_string(uv->components) +
@@ -238,8 +239,8 @@ FemMesh read_vtu_mesh(const std::string& path) {
     for (int k = 0; k < 3; ++k) {
       t[k] = whole(conn->values[start + k]);
       if (t[k] < 0 || t[k] >= n)
-        p.fail(conn->line, "cell " + std::to_string(c) + " refers to point " + std::to_string(t[k]) + " of " +
-                               std::to_string(n));
+        p.fail(conn->line,
+               "cell " + std::to_string(c) + " refers to point " + std::to_string(t[k]) + " of " + std::to_string(n));
     }
     start = end;
     const Vec2 e1 = m.uv[t[1]] - m.uv[t[0]], e2 = m.uv[t[2]] - m.uv[t[0]];

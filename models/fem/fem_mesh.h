@@ -38,10 +38,10 @@ class FemMeshError : public std::invalid_argument {  // bad input: exit 2
 };
 
 struct FemMesh {
-  std::string source;                        // "grid" or the file it came from
-  std::vector<Vec2> uv;                      // rest material coordinates [m]
-  std::vector<Vec3> x;                       // initial positions [m]
-  std::vector<std::array<int, 3>> triangles; // CCW in UV
+  std::string source;                         // "grid" or the file it came from
+  std::vector<Vec2> uv;                       // rest material coordinates [m]
+  std::vector<Vec3> x;                        // initial positions [m]
+  std::vector<std::array<int, 3>> triangles;  // CCW in UV
   // Grid meshes only: crossing index of each vertex column / row.
   std::vector<int> grid_i, grid_j;
 

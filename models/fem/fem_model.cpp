@@ -228,28 +228,28 @@ Frame FemModel::frame(double t, const Vec& q, const Vec& v) {
 std::map<std::string, std::string> FemModel::describe() const {
   std::map<std::string, std::string> m;
   m["model"] = "fem";
-  m["mesh"] = mesh_.is_grid() ? "grid " + std::to_string(mesh_.grid_i.size()) + " x " +
-                                    std::to_string(mesh_.grid_j.size()) + " vertices (stride " +
-                                    std::to_string(scene_.fem.stride) + ")"
-                              : mesh_.source;
+  m["mesh"] = mesh_.is_grid()
+                  ? "grid " + std::to_string(mesh_.grid_i.size()) + " x " + std::to_string(mesh_.grid_j.size()) +
+                        " vertices (stride " + std::to_string(scene_.fem.stride) + ")"
+                  : mesh_.source;
   m["vertices"] = std::to_string(mesh_.num_vertices());
   m["triangles"] = std::to_string(mesh_.num_triangles());
   m["hinges"] = std::to_string(hinges_.size());
   m["dofs"] = std::to_string(num_dofs_);
   m["fixed_dofs"] = std::to_string(fixed_.size());
   std::ostringstream terms;
-  for (const auto& t : terms_) terms << (terms.tellp() > 0 ? ", " : "") << t->name() << " (" << t->num_elements() << ")";
+  for (const auto& t : terms_)
+    terms << (terms.tellp() > 0 ? ", " : "") << t->name() << " (" << t->num_elements() << ")";
   m["terms"] = terms.str();
   m["matrix_nonzeros"] = std::to_string(pattern().nonZeros());
   const FemMaterial& p = material_;
-  m["fem_parameters"] = "areal_density_kg_per_m2=" + format(p.areal_density_kg_per_m2) +
-                        " warp_stretch_N_per_m=" + format(p.warp_stretch_N_per_m) +
-                        " weft_stretch_N_per_m=" + format(p.weft_stretch_N_per_m) +
-                        " shear_N_per_m=" + format(p.shear_N_per_m) +
-                        " shear_lock_angle_rad=" + format(p.shear_lock_angle_rad) +
-                        " shear_lock_exponent=" + format(p.shear_lock_exponent) +
-                        " warp_bending_N_m=" + format(p.warp_bending_N_m) +
-                        " weft_bending_N_m=" + format(p.weft_bending_N_m);
+  m["fem_parameters"] =
+      "areal_density_kg_per_m2=" + format(p.areal_density_kg_per_m2) +
+      " warp_stretch_N_per_m=" + format(p.warp_stretch_N_per_m) +
+      " weft_stretch_N_per_m=" + format(p.weft_stretch_N_per_m) + " shear_N_per_m=" + format(p.shear_N_per_m) +
+      " shear_lock_angle_rad=" + format(p.shear_lock_angle_rad) +
+      " shear_lock_exponent=" + format(p.shear_lock_exponent) + " warp_bending_N_m=" + format(p.warp_bending_N_m) +
+      " weft_bending_N_m=" + format(p.weft_bending_N_m);
   return m;
 }
 

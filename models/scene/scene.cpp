@@ -117,9 +117,7 @@ void read_pattern(TableReader& p, Scene& s) {
   const int grid = std::min(s.warps, s.wefts);
   const std::string grid_txt = "min(cloth.warps, cloth.wefts)" + eq(grid);
   switch (pat.kind) {
-    case Pattern::Kind::plain:
-      p.finish("(twill takes over, under, shift; satin takes harness, step)");
-      return;
+    case Pattern::Kind::plain: p.finish("(twill takes over, under, shift; satin takes harness, step)"); return;
     case Pattern::Kind::twill: {
       auto ge1 = [](long long x) { return x >= 1; };
       p.read_int("over", pat.twill_over, "an integer ≥ 1", ge1);
@@ -143,7 +141,8 @@ void read_pattern(TableReader& p, Scene& s) {
       const int n = pat.satin_harness, k = pat.satin_step;
       if (n > grid) p.fail_key("harness", "a harness ≤ " + grid_txt, std::to_string(n));
       if (!(k > 1 && k < n - 1 && std::gcd(k, n) == 1))
-        p.fail_key("step", "an integer with 1 < step < harness−1" + eq(n - 1) + " and gcd(step, harness" + eq(n) + ") = 1",
+        p.fail_key("step",
+                   "an integer with 1 < step < harness−1" + eq(n - 1) + " and gcd(step, harness" + eq(n) + ") = 1",
                    std::to_string(k));
       return;
     }
@@ -191,7 +190,8 @@ void read_cloth(TableReader& top, Scene& s, const std::map<std::string, YarnType
         const toml::node* arr = c ? c->table().get(key) : nullptr;
         const toml::node* elem = arr && arr->as_array() ? arr->as_array()->get(k) : nullptr;
         if (elem) c->fail_at(*elem, key, expected);
-        top.source().fail(c ? c->line() : 1, std::string("cloth.") + key, '"' + names[k] + "\" (the default)", expected);
+        top.source().fail(c ? c->line() : 1, std::string("cloth.") + key, '"' + names[k] + "\" (the default)",
+                          expected);
       }
       used.insert(names[k]);
     }
@@ -273,8 +273,8 @@ void read_fem(TableReader& top, Scene& s) {
 
 // node = [i, j] inside the grid, not used twice, on the FEM lattice when stride > 1.
 NodeRef read_node(TableReader& t, const Scene& s, std::map<std::pair<int, int>, std::string>& taken) {
-  const std::string expected = "[i, j] with integers 0 ≤ i < cloth.wefts" + eq(s.wefts) +
-                               " and 0 ≤ j < cloth.warps" + eq(s.warps);
+  const std::string expected =
+      "[i, j] with integers 0 ≤ i < cloth.wefts" + eq(s.wefts) + " and 0 ≤ j < cloth.warps" + eq(s.warps);
   const toml::node* n = t.get("node");
   if (!n) t.fail_missing("node", expected);
   const auto* a = n->as_array();

@@ -12,9 +12,9 @@
 namespace wl {
 
 struct YarnType {
-  double density_kg_per_m = 0.002;        // linear density ρ
-  double stretch_modulus_Pa = 5e5;        // Y, k_s = Y·πR² (docs/models.md §3.2)
-  double bending_modulus_Pa = 1.4e-4;     // B, k_b = B·πR² (docs/models.md §3.3)
+  double density_kg_per_m = 0.002;     // linear density ρ
+  double stretch_modulus_Pa = 5e5;     // Y, k_s = Y·πR² (docs/models.md §3.2)
+  double bending_modulus_Pa = 1.4e-4;  // B, k_b = B·πR² (docs/models.md §3.3)
 };
 
 struct Pattern {
@@ -26,14 +26,14 @@ struct Pattern {
 struct ContactParams {
   enum class ShearModel { cirio, gong } shear_model = ShearModel::gong;
   enum class FrictionModel { gong, cirio } friction_model = FrictionModel::gong;
-  double shear_modulus_Pa = 1000.0;  // S; Gong k_sh = S·πR²(1+F_n)·lock, Cirio k_x = S·πR²
-  double friction_coefficient = 0.5;       // μ
-  double friction_stiffness_N_per_m = 1000.0;   // k_f
-  double friction_damping_Ns_per_m = 1000.0;    // d_f
-  double tanh_sharpness_per_m = 10.0;           // p in K(x) = tanh(p x) (docs/models.md §5.1)
-  double parallel_stiffness_N_per_m2 = 1.0;     // k_c, V = ½ k_c L ReLU(d − Δu)²
-  double lock_exponent = 3.0;                   // c
-  double lock_sigma = 0.6;                      // σ
+  double shear_modulus_Pa = 1000.0;            // S; Gong k_sh = S·πR²(1+F_n)·lock, Cirio k_x = S·πR²
+  double friction_coefficient = 0.5;           // μ
+  double friction_stiffness_N_per_m = 1000.0;  // k_f
+  double friction_damping_Ns_per_m = 1000.0;   // d_f
+  double tanh_sharpness_per_m = 10.0;          // p in K(x) = tanh(p x) (docs/models.md §5.1)
+  double parallel_stiffness_N_per_m2 = 1.0;    // k_c, V = ½ k_c L ReLU(d − Δu)²
+  double lock_exponent = 3.0;                  // c
+  double lock_sigma = 0.6;                     // σ
 };
 
 struct NodeRef {
@@ -46,13 +46,13 @@ struct Handle {
 };
 
 struct FemSettings {
-  int stride = 1;                         // vertices every `stride`-th crossing
-  std::string mesh_file;                  // optional VTU with per-vertex rest UV ("" = build from the grid)
-  std::string parameter_file;             // optional calibrated parameters ("" = [fem] values / defaults)
+  int stride = 1;              // vertices every `stride`-th crossing
+  std::string mesh_file;       // optional VTU with per-vertex rest UV ("" = build from the grid)
+  std::string parameter_file;  // optional calibrated parameters ("" = [fem] values / defaults)
   std::optional<double> areal_density_kg_per_m2;
   std::optional<double> warp_stretch_N_per_m, weft_stretch_N_per_m;  // per unit width
   std::optional<double> shear_N_per_m;
-  std::optional<double> shear_lock_angle_rad;   // shear angle where stiffening starts
+  std::optional<double> shear_lock_angle_rad;  // shear angle where stiffening starts
   std::optional<double> shear_lock_exponent;
   std::optional<double> warp_bending_N_m, weft_bending_N_m;  // per unit width
   bool border_strip = false;  // bars for the border yarns' outer half spacing (terms/border_stretch.h)
@@ -71,8 +71,8 @@ struct Scene {
   std::map<std::string, int> key_lines;
 
   // Woven cloth
-  int warps = 17;  // warp yarns (each runs along u, j fixed)
-  int wefts = 17;  // weft yarns (each runs along v, i fixed)
+  int warps = 17;           // warp yarns (each runs along u, j fixed)
+  int wefts = 17;           // weft yarns (each runs along v, i fixed)
   double spacing_m = 1e-3;  // L
   double radius_m = 5e-4;   // R
   bool sliding = true;      // false: u, v frozen, 3 DoFs per node
@@ -138,7 +138,8 @@ struct SettingViolation {
 // The first violated rule, or nothing. `rank(key)` says where a key's value
 // came from (0 default, 1 scene file, 2 command line); a rule between two keys
 // blames the one with the higher rank (the first one on a tie).
-std::optional<SettingViolation> time_settings_violation(const Scene& scene, const std::function<int(const std::string&)>& rank);
+std::optional<SettingViolation> time_settings_violation(const Scene& scene,
+                                                        const std::function<int(const std::string&)>& rank);
 
 // Reads and validates a scene; throws SceneError (missing file: line 0).
 // The format is documented in scene.cpp and experiments/scenes/README.md.

@@ -92,7 +92,8 @@ std::string format_number(double x) {
   char buf[400];
   const double a = std::abs(x);
   const bool fixed = a == 0.0 || (a >= 1e-4 && a < 1e7);
-  const auto res = std::to_chars(buf, buf + sizeof buf, x, fixed ? std::chars_format::fixed : std::chars_format::scientific);
+  const auto res =
+      std::to_chars(buf, buf + sizeof buf, x, fixed ? std::chars_format::fixed : std::chars_format::scientific);
   return std::string(buf, res.ptr);
 }
 
@@ -132,12 +133,9 @@ bool TableReader::read_number(std::string_view key, double& out, const std::stri
   const toml::node* n = get(key);
   if (!n) return false;
   double x;
-  if (const auto* i = n->as_integer())
-    x = static_cast<double>(i->get());
-  else if (const auto* f = n->as_floating_point())
-    x = f->get();
-  else
-    fail_at(*n, key, expected);
+  if (const auto* i = n->as_integer()) x = static_cast<double>(i->get());
+  else if (const auto* f = n->as_floating_point()) x = f->get();
+  else fail_at(*n, key, expected);
   if (!std::isfinite(x) || (ok && !ok(x))) fail_at(*n, key, expected);
   out = x;
   return true;
@@ -202,12 +200,9 @@ bool TableReader::read_vec3(std::string_view key, std::array<double, 3>& out, co
   std::array<double, 3> v{};
   for (size_t k = 0; k < 3; ++k) {
     const toml::node& e = *a->get(k);
-    if (const auto* i = e.as_integer())
-      v[k] = static_cast<double>(i->get());
-    else if (const auto* f = e.as_floating_point())
-      v[k] = f->get();
-    else
-      fail_at(*n, key, expected);
+    if (const auto* i = e.as_integer()) v[k] = static_cast<double>(i->get());
+    else if (const auto* f = e.as_floating_point()) v[k] = f->get();
+    else fail_at(*n, key, expected);
     if (!std::isfinite(v[k])) fail_at(*n, key, expected);
   }
   out = v;

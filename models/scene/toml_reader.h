@@ -59,7 +59,8 @@ class TableReader {
                    const std::function<bool(double)>& ok = {});
   bool read_number(std::string_view key, std::optional<double>& out, const std::string& expected,
                    const std::function<bool(double)>& ok = {});
-  bool read_int(std::string_view key, int& out, const std::string& expected, const std::function<bool(long long)>& ok = {});
+  bool read_int(std::string_view key, int& out, const std::string& expected,
+                const std::function<bool(long long)>& ok = {});
   bool read_bool(std::string_view key, bool& out);
   bool read_string(std::string_view key, std::string& out, const std::string& expected,
                    const std::function<bool(const std::string&)>& ok = {});

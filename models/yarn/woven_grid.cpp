@@ -6,15 +6,13 @@ namespace wl {
 
 int pattern_sign(const Pattern& p, int i, int j) {
   switch (p.kind) {
-    case Pattern::Kind::plain:
-      return (i + j) % 2 == 0 ? 1 : -1;
+    case Pattern::Kind::plain: return (i + j) % 2 == 0 ? 1 : -1;
     case Pattern::Kind::twill: {
       const int period = p.twill_over + p.twill_under;
       const int k = ((i + p.twill_shift * j) % period + period) % period;
       return k < p.twill_over ? 1 : -1;
     }
-    case Pattern::Kind::satin:
-      return ((p.satin_step * i + j) % p.satin_harness) == 0 ? 1 : -1;
+    case Pattern::Kind::satin: return ((p.satin_step * i + j) % p.satin_harness) == 0 ? 1 : -1;
   }
   return 1;
 }

@@ -76,9 +76,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j + 1 < nv; ++j)
       segments_.push_back({grid_.node(i, j), grid_.node(i, j + 1), false, weft_ks[i], weft_name(i)});
-  auto rho_of = [&](const Segment& s) {
-    return s.warp ? warp_rho[s.a / nu] : weft_rho[s.a % nu];
-  };
+  auto rho_of = [&](const Segment& s) { return s.warp ? warp_rho[s.a / nu] : weft_rho[s.a % nu]; };
   // Each element is tagged with the scene parameter it is proportional to (docs/models.md §9.1).
   auto type_of = [&](const Segment& s) -> const YarnType& { return scene.yarn_types.at(s.type); };
 
@@ -128,8 +126,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
 
   const bool gong_shear = on.shear && c.shear_model == ContactParams::ShearModel::gong;
   const bool friction = on.friction && scene.sliding;
-  if (gong_shear || friction)
-    normals_ = std::make_unique<ContactNormals>(grid_, warp_ks, warp_kb, weft_ks, weft_kb, R);
+  if (gong_shear || friction) normals_ = std::make_unique<ContactNormals>(grid_, warp_ks, warp_kb, weft_ks, weft_kb, R);
   const std::vector<double>* fn = normals_ ? &normals_->normal_force() : nullptr;
 
   if (on.shear) {
@@ -189,8 +186,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
     std::unique_ptr<FrictionTerm> t;
     if (c.friction_model == ContactParams::FrictionModel::gong)
       t = std::make_unique<GongFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
-    else
-      t = std::make_unique<CirioFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
+    else t = std::make_unique<CirioFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
     add_all(t);
     friction_ = t.get();
     terms_.push_back(std::move(t));
@@ -259,8 +255,8 @@ std::string YarnModel::invalid_state(const Vec& q) const {
     std::ostringstream why;
     why.precision(17);
     why << "sliding coordinates meet or cross on " << (s.warp ? "warp " : "weft ") << (s.warp ? s.a / nu : s.a % nu)
-        << " between crossings (" << s.a % nu << ", " << s.a / nu << ") and (" << s.b % nu << ", " << s.b / nu << "): "
-        << (s.warp ? "u" : "v") << " = " << ca << " and " << cb << " (a segment needs increasing coordinates)";
+        << " between crossings (" << s.a % nu << ", " << s.a / nu << ") and (" << s.b % nu << ", " << s.b / nu
+        << "): " << (s.warp ? "u" : "v") << " = " << ca << " and " << cb << " (a segment needs increasing coordinates)";
     return why.str();
   }
   return {};
@@ -324,7 +320,8 @@ std::map<std::string, std::string> YarnModel::describe() const {
   m["pattern"] = pattern_name(scene_.pattern.kind);
   m["segments"] = std::to_string(segments_.size());
   std::ostringstream terms;
-  for (const auto& t : terms_) terms << (terms.tellp() > 0 ? ", " : "") << t->name() << " (" << t->num_elements() << ")";
+  for (const auto& t : terms_)
+    terms << (terms.tellp() > 0 ? ", " : "") << t->name() << " (" << t->num_elements() << ")";
   m["terms"] = terms.str();
   m["matrix_nonzeros"] = std::to_string(pattern().nonZeros());
   return m;

@@ -35,9 +35,9 @@ class YarnModel : public TermModel {
 
  private:
   struct Segment {
-    int a, b;        // node ids
-    bool warp;       // along u (warp) or v (weft)
-    double ks;       // stretch stiffness of its yarn [N]
+    int a, b;          // node ids
+    bool warp;         // along u (warp) or v (weft)
+    double ks;         // stretch stiffness of its yarn [N]
     std::string type;  // its yarn type's name (scene yarn_types)
   };
   std::array<int, 8> segment_stencil(const Segment& s) const;

@@ -60,7 +60,8 @@ TEST(CalibrationFit, CovarianceMatchesLinearLeastSquares) {
   const std::vector<double> scatter{0.03, -0.05, 0.02, 0.04, -0.01, -0.03};
   const double a0 = 2.0, b0 = 0.7;
   FitCurve curve{{TestKind::uniaxial_warp, lambda}, {}};
-  for (size_t i = 0; i < lambda.size(); ++i) curve.target.push_back(a0 * lambda[i] + b0 * lambda[i] * lambda[i] + scatter[i]);
+  for (size_t i = 0; i < lambda.size(); ++i)
+    curve.target.push_back(a0 * lambda[i] + b0 * lambda[i] * lambda[i] + scatter[i]);
   const ContinuumTest linear = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
     ResponseCurve c{t.kind, {}, true, "", {}};
     for (double l : t.ladder) {

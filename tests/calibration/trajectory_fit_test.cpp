@@ -78,7 +78,8 @@ TEST(TrajectoryFit, RecoversYarnParametersFromTheirOwnTrajectory) {
     return f;
   });
   TrajectoryFitOptions opt;
-  const std::string rho = yarn_type_key("default", kDensityField), bend = yarn_type_key("default", kBendingModulusField);
+  const std::string rho = yarn_type_key("default", kDensityField),
+                    bend = yarn_type_key("default", kBendingModulusField);
   opt.free = {kShearModulusKey, rho, bend};
   opt.start = {{kShearModulusKey, 1400.0}, {rho, 1.5e-3}, {bend, 2e-4}};
   const TrajectoryFitResult r = fit_trajectory(truth, target, opt);

@@ -66,7 +66,8 @@ TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
   const FemMaterial m = default_fem_material(patch);
   for (const std::string& name : test_names()) {
     const TestKind kind = test_kind(name);
-    const TestSpec test{kind, {default_ladder(kind, 7, patch.spacing_m)[3], default_ladder(kind, 7, patch.spacing_m)[7]}};
+    const TestSpec test{kind,
+                        {default_ladder(kind, 7, patch.spacing_m)[3], default_ladder(kind, 7, patch.spacing_m)[7]}};
     const std::vector<std::string> keys = informed_parameters(kind, m);
     std::vector<std::string> prefixed;
     for (const auto& k : keys) prefixed.push_back("fem." + k);

@@ -1,12 +1,12 @@
 // The command line on bad input: a clear message, exit code 2 and nothing written.
 #include <gtest/gtest.h>
 
+#include <stdlib.h>
+#include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <stdlib.h>
-#include <sys/wait.h>
 
 namespace {
 
@@ -48,7 +48,8 @@ class Cli : public ::testing::Test {
     const fs::path out = dir_ / "out";
     Result r = run_cli("run '" + scene.string() + "' --out '" + out.string() + "'", dir_);
     EXPECT_EQ(r.code, 2) << r.output;
-    for (const auto& f : fragments) EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+    for (const auto& f : fragments)
+      EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
     EXPECT_FALSE(fs::exists(out)) << "output written for a bad scene";
   }
   fs::path dir_;
@@ -76,8 +77,8 @@ TEST_F(Cli, MissingFileIsRejected) {
 
 TEST_F(Cli, UnknownIntegratorIsRejected) {
   const fs::path out = dir_ / "out";
-  Result r = run_cli(std::string("run '") + WEAVELAB_SOURCE_DIR + "/experiments/scenes/hanging_wind.toml' --integrator rk99 --out '" +
-                         out.string() + "'",
+  Result r = run_cli(std::string("run '") + WEAVELAB_SOURCE_DIR +
+                         "/experiments/scenes/hanging_wind.toml' --integrator rk99 --out '" + out.string() + "'",
                      dir_);
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("rk99"), std::string::npos) << r.output;
@@ -163,9 +164,11 @@ TEST_F(Cli, EveryBadInputIsALocatedExit2) {
     return mesh_head + "<Points>\n<DataArray Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n" + points +
            "\n</DataArray>\n</Points>\n<Cells>\n<DataArray Name=\"connectivity\" format=\"ascii\">\n" + conn +
            "\n</DataArray>\n<DataArray Name=\"offsets\" format=\"ascii\">\n3\n</DataArray>\n"
-           "<DataArray Name=\"types\" format=\"ascii\">\n" + type + "\n</DataArray>\n</Cells>\n<PointData>\n"
-           "<DataArray Name=\"uv\" NumberOfComponents=\"2\" format=\"ascii\">\n" + uv +
-           "\n</DataArray>\n</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+           "<DataArray Name=\"types\" format=\"ascii\">\n" +
+           type +
+           "\n</DataArray>\n</Cells>\n<PointData>\n"
+           "<DataArray Name=\"uv\" NumberOfComponents=\"2\" format=\"ascii\">\n" +
+           uv + "\n</DataArray>\n</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   };
   const std::string pts = "0 0 0 0.004 0 0 0 0.004 0", conn = "0 1 2", uv = "0 0 0.004 0 0 0.004";
   struct Case {
@@ -192,7 +195,7 @@ TEST_F(Cli, EveryBadInputIsALocatedExit2) {
       {"--integrator foo", "", "", "", "'--integrator'"},
       {"--integrator ''", "", "", "", "'--integrator'"},
       {"--linear-solver lu", "", "", "", "'--linear-solver'"},
-      {"--linear-solver cholmod", "", "", "", "'--linear-solver'"},  // the yarn step matrix is not symmetric
+      {"--linear-solver cholmod", "", "", "", "'--linear-solver'"},           // the yarn step matrix is not symmetric
       {"", "[cloth]\nwarps = 16384\nwefts = 16384\n", "", "", "bad.toml:2"},  // cannot fit in memory
       {"--out ''", "", "", "", "'--out'"},
       {"--model cloth", "", "", "", "cloth"},
@@ -212,8 +215,8 @@ TEST_F(Cli, EveryBadInputIsALocatedExit2) {
       {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu", "", "m.vtu:1"},
       {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",
        mesh("0 nan 0 0.004 0 0 0 0.004 0", conn, "5", uv), "m.vtu:5"},
-      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu", mesh(pts, conn, "9", uv),
-       "m.vtu:"},
+      {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",
+       mesh(pts, conn, "9", uv), "m.vtu:"},
       {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",
        mesh(pts, "0 1 5", "5", uv), "m.vtu:"},
       {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nmesh_file = \"m.vtu\"\n", "m.vtu",
@@ -280,13 +283,17 @@ TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
 
 TEST_F(Cli, CalibrateWritesAParameterFileThatRunReads) {
   const fs::path out = dir_ / "cal";
-  Result r = run_cli("calibrate '" + kHangingWind + "' --tests uniaxial-warp,bending-warp --patch 7 --starts 1 --quiet"
-                     " --out '" + out.string() + "'", dir_);
+  Result r = run_cli("calibrate '" + kHangingWind +
+                         "' --tests uniaxial-warp,bending-warp --patch 7 --starts 1 --quiet"
+                         " --out '" +
+                         out.string() + "'",
+                     dir_);
   ASSERT_EQ(r.code, 0) << r.output;
   for (const char* f : {"params.toml", "calibration.json", "curves.csv"}) EXPECT_TRUE(fs::exists(out / f)) << f;
   const fs::path run = dir_ / "run";
   r = run_cli("run '" + kHangingWind + "' --model fem --duration 0.01 --quiet --fem-params '" +
-                  (out / "params.toml").string() + "' --out '" + run.string() + "'", dir_);
+                  (out / "params.toml").string() + "' --out '" + run.string() + "'",
+              dir_);
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(run / "summary.json");
   std::stringstream summary;
@@ -298,9 +305,9 @@ TEST_F(Cli, RunRejectsABadFemParameterFile) {
   const fs::path params = dir_ / "params.toml";
   std::ofstream(params) << "warp_stretch_N_per_m = 300.0\ncolour = 2.0\n";
   const fs::path out = dir_ / "run";
-  Result r = run_cli("run '" + kHangingWind + "' --model fem --fem-params '" + params.string() + "' --out '" +
-                         out.string() + "'",
-                     dir_);
+  Result r = run_cli(
+      "run '" + kHangingWind + "' --model fem --fem-params '" + params.string() + "' --out '" + out.string() + "'",
+      dir_);
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find(params.string() + ":2: key 'colour'"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));

@@ -3,11 +3,11 @@
 // cheapest variant within the tolerance, and the Pareto chart script draws them.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 
 namespace {
 
@@ -49,7 +49,8 @@ class FidelityCli : public ::testing::Test {
   void expect_refused(const std::string& options, const std::vector<std::string>& fragments) {
     const Result r = fidelity(options);
     EXPECT_EQ(r.code, 2) << r.output;
-    for (const auto& f : fragments) EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+    for (const auto& f : fragments)
+      EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
     EXPECT_FALSE(fs::exists(out())) << "output written for bad input";
   }
   fs::path out() const { return dir_ / "out"; }

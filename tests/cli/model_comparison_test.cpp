@@ -27,7 +27,8 @@ wl::test::CommandResult run_model(const std::string& model, const fs::path& out)
 int pvd_frames(const fs::path& run) {
   const std::string text = wl::test::read_text(run / "run.pvd");
   const std::regex dataset("<DataSet ");
-  return static_cast<int>(std::distance(std::sregex_iterator(text.begin(), text.end(), dataset), std::sregex_iterator()));
+  return static_cast<int>(
+      std::distance(std::sregex_iterator(text.begin(), text.end(), dataset), std::sregex_iterator()));
 }
 
 TEST(ModelComparison, YarnAndFemRunsOfOneScenePairFrameByFrame) {

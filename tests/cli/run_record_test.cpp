@@ -97,7 +97,8 @@ class RunRecord : public ::testing::Test {
     const auto r = test::run_python_script(dir_.path(), kCheckRecord, test::shell_quote(out.string()) + " " + outcome);
     if (r.exit_code == 0) return ::testing::AssertionSuccess() << r.output;
     return ::testing::AssertionFailure() << "record in " << out << " not consistent:\n"
-                                         << r.output << "\nrun log:\n" << read_text(dir_ / "log.txt");
+                                         << r.output << "\nrun log:\n"
+                                         << read_text(dir_ / "log.txt");
   }
   std::string log() { return read_text(dir_ / "log.txt"); }
 
@@ -155,9 +156,9 @@ TEST_F(RunRecord, SecondRunIntoABusyFolderIsRefused) {
   const fs::path out = dir_ / "out";
   const pid_t first = start("long.toml", out, {"--quiet"});
   wait_for_rows(out, 20);
-  const auto second = test::run_command(std::string(WEAVELAB_CLI) + " run " +
-                                        test::shell_quote((dir_ / "short.toml").string()) + " --quiet --out " +
-                                        test::shell_quote(out.string()));
+  const auto second =
+      test::run_command(std::string(WEAVELAB_CLI) + " run " + test::shell_quote((dir_ / "short.toml").string()) +
+                        " --quiet --out " + test::shell_quote(out.string()));
   EXPECT_EQ(second.exit_code, 2) << second.output;
   EXPECT_NE(second.output.find(out.string()), std::string::npos) << second.output;
   EXPECT_NE(second.output.find("in use"), std::string::npos) << second.output;

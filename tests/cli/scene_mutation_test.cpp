@@ -121,9 +121,9 @@ weft_bending_N_m = 0.00000008
 )";
 
 // Invalid for most keys, or valid but extreme (1e-300, 1e30, 1e300 for a density or a stiffness).
-const std::vector<std::string> kReplacements = {"nan",   "inf",    "-inf", "0",    "0.0",
-                                                "-1",    "-0.5",   "1",    "1e-300", "1e30",
-                                                "1e300", "9223372036854775807", "\"text\"", "true", "[1, 2]", "{}"};
+const std::vector<std::string> kReplacements = {"nan",      "inf",  "-inf",   "0",    "0.0",   "-1",
+                                                "-0.5",     "1",    "1e-300", "1e30", "1e300", "9223372036854775807",
+                                                "\"text\"", "true", "[1, 2]", "{}"};
 
 // One to three mutations of `base` (one in 70 %): each drops a `key = value` line or replaces its value.
 std::string mutate(const std::string& base, std::mt19937& rng) {
@@ -176,12 +176,13 @@ TEST(SceneMutation, EveryMutationEndsInExit0To2NeverACrash) {
       ++cli_runs;
       const fs::path scene = dir / "mutated.toml", out = dir / ("out" + std::to_string(tried));
       std::ofstream(scene) << text;
-      const auto r = wl::test::run_command("timeout 60 " + std::string(WEAVELAB_CLI) + " run " +
-                                           shell_quote(scene.string()) + " --model " + model + " --duration 0.004 --quiet --out " +
-                                           shell_quote(out.string()));
+      const auto r =
+          wl::test::run_command("timeout 60 " + std::string(WEAVELAB_CLI) + " run " + shell_quote(scene.string()) +
+                                " --model " + model + " --duration 0.004 --quiet --out " + shell_quote(out.string()));
       ++exits[r.exit_code];
       EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1 || r.exit_code == 2)
-          << "exit " << r.exit_code << ": " << r.output << "\n" << text;
+          << "exit " << r.exit_code << ": " << r.output << "\n"
+          << text;
       if (r.exit_code == 2) {
         located += r.output.find("mutated.toml:") != std::string::npos;
         EXPECT_NE(r.output.find("mutated.toml:"), std::string::npos) << "exit 2 without file and line: " << r.output;

@@ -123,7 +123,8 @@ TEST(WindTerm, DissipatesInStillAir) {
     const double power = f.dot(Eigen::Map<const Vec9>(s.v.data()));
     EXPECT_LE(power, 1e-14);
     const Vec3 mean = (Eigen::Map<const Vec3>(s.v.data()) + Eigen::Map<const Vec3>(s.v.data() + 3) +
-                       Eigen::Map<const Vec3>(s.v.data() + 6)) / 3;
+                       Eigen::Map<const Vec3>(s.v.data() + 6)) /
+                      3;
     if (mean.norm() > 1e-3) {
       EXPECT_LT(power, 0.0);
     }

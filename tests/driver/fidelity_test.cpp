@@ -22,9 +22,10 @@ std::string free_fall() { return std::string("[cloth]\nwarps = 5\nwefts = 5\n") 
 
 // Held at two top corners in the wind, friction off: the yarns slide freely.
 std::string sliding_in_wind() {
-  return std::string("[cloth]\nwarps = 5\nwefts = 5\n[[handles]]\nnode = [0, 0]\n[[handles]]\nnode = [4, 0]\n"
-                     "[wind]\nvelocity_m_per_s = [0.0, 5.0, 0.0]\nair_density_kg_per_m3 = 2.0\ndrag_Ns_per_m3 = 0.5\n"
-                     "[terms]\nfriction = false\n") +
+  return std::string(
+             "[cloth]\nwarps = 5\nwefts = 5\n[[handles]]\nnode = [0, 0]\n[[handles]]\nnode = [4, 0]\n"
+             "[wind]\nvelocity_m_per_s = [0.0, 5.0, 0.0]\nair_density_kg_per_m3 = 2.0\ndrag_Ns_per_m3 = 0.5\n"
+             "[terms]\nfriction = false\n") +
          kTime;
 }
 

@@ -51,7 +51,12 @@ TEST(RunSettings, BadOverridesNameOptionValueAndRule) {
   add([&](RunOverrides& o) { o.rtol = nan; }, "--rtol", "nan", "< 1");
   add([&](RunOverrides& o) { o.integrator = "rk99"; }, "--integrator", "\"rk99\"", "one of be-linear");
   add([&](RunOverrides& o) { o.integrator = ""; }, "--integrator", "\"\"", "one of");
-  add([&](RunOverrides& o) { o.dt_s = 1; o.duration_s = 0.01; }, "--dt", "1", "≤ time.duration_s");
+  add(
+      [&](RunOverrides& o) {
+        o.dt_s = 1;
+        o.duration_s = 0.01;
+      },
+      "--dt", "1", "≤ time.duration_s");
   for (const Case& c : cases) {
     const std::string msg = rejection(c.o);
     EXPECT_EQ(msg.rfind("option '" + c.option + "': got ", 0), 0u) << c.option << " " << c.value << ": " << msg;

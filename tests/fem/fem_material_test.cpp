@@ -48,7 +48,8 @@ TEST(FemMaterial, ParameterFileOverridesAndRoundTrips) {
   EXPECT_DOUBLE_EQ(m.shear_N_per_m, 5.0);
 
   FemMaterial all = default_fem_material(test::fem_scene(3, 3));
-  const std::string path = (std::filesystem::temp_directory_path() / ("wl_fem_params_" + std::to_string(::getpid()) + ".toml")).string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("wl_fem_params_" + std::to_string(::getpid()) + ".toml")).string();
   write_fem_parameter_file(path, all, {{"note", "unit test"}});
   const FemMaterial back = read_fem_parameter_file(path, FemMaterial{});
   std::remove(path.c_str());
@@ -68,10 +69,14 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(FemMaterial, ParameterFileErrorsNameFileLineKeyValue) {
-  EXPECT_EQ(error_of("shear_N_per_m = 1\nwarp_strech_N_per_m = 3\n").rfind("cal.toml:2: key 'warp_strech_N_per_m': got an unknown key, expected one of", 0), 0u)
+  EXPECT_EQ(error_of("shear_N_per_m = 1\nwarp_strech_N_per_m = 3\n")
+                .rfind("cal.toml:2: key 'warp_strech_N_per_m': got an unknown key, expected one of", 0),
+            0u)
       << error_of("warp_strech_N_per_m = 3");
-  EXPECT_EQ(error_of("\nshear_N_per_m = -2.5\n"), "cal.toml:2: key 'shear_N_per_m': got -2.5, expected a number > 0 (N/m)");
-  EXPECT_EQ(error_of("shear_N_per_m = \"x\"\n"), "cal.toml:1: key 'shear_N_per_m': got 'x', expected a number > 0 (N/m)");
+  EXPECT_EQ(error_of("\nshear_N_per_m = -2.5\n"),
+            "cal.toml:2: key 'shear_N_per_m': got -2.5, expected a number > 0 (N/m)");
+  EXPECT_EQ(error_of("shear_N_per_m = \"x\"\n"),
+            "cal.toml:1: key 'shear_N_per_m': got 'x', expected a number > 0 (N/m)");
   EXPECT_NE(error_of("shear_lock_angle_rad = 2.0").find("expected a shear angle in (0, π/2) rad"), std::string::npos);
   EXPECT_NE(error_of("a = = 1").find("cal.toml:1: key '(syntax)'"), std::string::npos);
   try {

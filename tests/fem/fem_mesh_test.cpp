@@ -84,7 +84,8 @@ std::string vtu(const std::string& uv_name = "uv", const std::string& format = "
 <UnstructuredGrid>
 <Piece NumberOfPoints="4" NumberOfCells="2">
 <Points>
-<DataArray type="Float64" Name="Points" NumberOfComponents="3" format=")" + format + R"(">
+<DataArray type="Float64" Name="Points" NumberOfComponents="3" format=")" +
+         format + R"(">
 0 0 1  0.01 0 1  0.01 0.01 1  0 0.01 1
 </DataArray>
 </Points>
@@ -96,11 +97,13 @@ std::string vtu(const std::string& uv_name = "uv", const std::string& format = "
 3 6
 </DataArray>
 <DataArray type="Int64" Name="types" format="ascii">
-5 )" + std::to_string(type2) + R"(
+5 )" + std::to_string(type2) +
+         R"(
 </DataArray>
 </Cells>
 <PointData>
-<DataArray type="Float64" Name=")" + uv_name + R"(" NumberOfComponents="2" format="ascii">
+<DataArray type="Float64" Name=")" +
+         uv_name + R"(" NumberOfComponents="2" format="ascii">
 0.00000000000e+00 0 0.01 0 0.01 0.01 0 1.0e-2
 </DataArray>
 </PointData>
@@ -121,9 +124,7 @@ TEST_F(VtuFile, ReadsTrianglesPointsAndUv) {
   EXPECT_FALSE(m.is_grid());
 }
 
-TEST_F(VtuFile, AcceptsMeshioObjTextureName) {
-  EXPECT_EQ(read_vtu_mesh(write(vtu("obj:vt"))).num_triangles(), 2);
-}
+TEST_F(VtuFile, AcceptsMeshioObjTextureName) { EXPECT_EQ(read_vtu_mesh(write(vtu("obj:vt"))).num_triangles(), 2); }
 
 TEST_F(VtuFile, BadFilesGiveClearErrors) {
   auto message = [&](const std::string& text) {
@@ -169,8 +170,9 @@ TEST_F(VtuFile, BrokenMeshesAreLocatedErrors) {
       {vtu_with("NumberOfPoints=\"4\"", "NumberOfPoints=\"-4\""), ":5: Piece NumberOfPoints"},
       {vtu_with("0 0.01 1\n", "0 0.01 1  0.5 0.5 1\n"), ":7: Points: expected"},
       // a fifth point no triangle uses
-      {replaced(replaced(vtu_with("NumberOfPoints=\"4\"", "NumberOfPoints=\"5\""), "0 0.01 1\n", "0 0.01 1 0.5 0.5 1\n"),
-                "0 1.0e-2", "0 1.0e-2 0.005 0.005"),
+      {replaced(
+           replaced(vtu_with("NumberOfPoints=\"4\"", "NumberOfPoints=\"5\""), "0 0.01 1\n", "0 0.01 1 0.5 0.5 1\n"),
+           "0 1.0e-2", "0 1.0e-2 0.005 0.005"),
        "point 4 is used by no triangle"},
       {vtu_with("0.01 0.01 0 1.0e-2", "0.01 0 0 1.0e-2"), "degenerate"},
   };

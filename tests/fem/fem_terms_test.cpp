@@ -228,15 +228,16 @@ TEST(FemTermParameters, BendingDerivativesMatchFiniteDifferences) {
       t->add(iota12(), Vec2(0.008, 0.012), 1.3e-4, 0.4);  // a diagonal edge: both stiffnesses act
       return std::unique_ptr<Term>(std::move(t));
     };
-    const auto r = test::check_parameter_derivative(make, k == 0 ? 2e-5 : 7e-6, k, 0, hinge_states(),
-                                                    {1e-7, 1e-5, 1e-14});
+    const auto r =
+        test::check_parameter_derivative(make, k == 0 ? 2e-5 : 7e-6, k, 0, hinge_states(), {1e-7, 1e-5, 1e-14});
     EXPECT_TRUE(r.ok) << r.detail;
   }
 }
 
 TEST(BorderStretchTerm, ForcesAndParameterDerivativesMatchFiniteDifferences) {
   std::vector<test::LocalState> states;
-  for (double stretch : {1.0001, 1.03, 0.97}) states.push_back({{0.001, 0.002, 0.5, 0.001 + 0.004 * stretch, 0.0025, 0.5001}, std::vector<double>(6, 0.0)});
+  for (double stretch : {1.0001, 1.03, 0.97})
+    states.push_back({{0.001, 0.002, 0.5, 0.001 + 0.004 * stretch, 0.0025, 0.5001}, std::vector<double>(6, 0.0)});
   for (bool along_u : {true, false}) {
     BorderStretchTerm t(120.0, 45.0, 5e-4);
     t.add({0, 1, 2, 3, 4, 5}, 0.004, along_u);
@@ -290,9 +291,7 @@ TEST(NodalGravityTerm, ForcesMatchEnergyGradient) {
 
 // Rigid motions of a deformed triangle/hinge change neither energy nor force magnitude;
 // at rest, rigid motions give zero force.
-Mat3 rotation() {
-  return (Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())).toRotationMatrix();
-}
+Mat3 rotation() { return (Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized())).toRotationMatrix(); }
 
 TEST(FemTermsPatch, RigidMotionsOfRestGiveZeroForce) {
   const TriangleRest rest = triangle_rest(kUv0, kUv1, kUv2);

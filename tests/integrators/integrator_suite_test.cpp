@@ -40,7 +40,8 @@ RunResult run(const std::string& name, Model& model, double t_end, IntegratorOpt
   RunResult r;
   integ->on_step = [&](const StepRecord&) { ++r.callbacks; };
   integ->initialize(model, 0.0, model.initial_q(), model.initial_v(), opt);
-  for (int k = 1; k <= outputs && r.result.outcome == Outcome::ok; ++k) r.result = integ->advance_to(t_end * k / outputs);
+  for (int k = 1; k <= outputs && r.result.outcome == Outcome::ok; ++k)
+    r.result = integ->advance_to(t_end * k / outputs);
   r.q = integ->q();
   r.v = integ->v();
   r.stats = integ->stats();
@@ -99,8 +100,8 @@ TEST_P(IntegratorSuite, AdaptiveErrorFollowsTolerance) {
     ASSERT_EQ(r.result.outcome, Outcome::ok) << r.result.message;
     errs.push_back(chain_error(*chain, r, T));
   }
-  std::printf("[ tol   ] %-12s errors at rtol 1e-5, 1e-7, 1e-9: %.3e %.3e %.3e\n", GetParam().c_str(), errs[0],
-              errs[1], errs[2]);
+  std::printf("[ tol   ] %-12s errors at rtol 1e-5, 1e-7, 1e-9: %.3e %.3e %.3e\n", GetParam().c_str(), errs[0], errs[1],
+              errs[2]);
   // Error roughly proportional to the tolerance: each 100× tighter tolerance
   // gives at least 10× less error.
   for (size_t i = 1; i < errs.size(); ++i) EXPECT_LT(errs[i], errs[i - 1] / 10) << "tolerance step " << i;
@@ -158,9 +159,7 @@ TEST_P(IntegratorSuite, EnergyBehaviour) {
       EXPECT_NEAR(mean(es.size() - tenth, es.size()), mean(0, tenth), 0.02 * E0);
       break;
     }
-    case EnergyBehaviour::follows_tolerance:
-      EXPECT_LT(std::abs(elast - E0), 1e-6 * E0) << "E0 " << E0;
-      break;
+    case EnergyBehaviour::follows_tolerance: EXPECT_LT(std::abs(elast - E0), 1e-6 * E0) << "E0 " << E0; break;
   }
 }
 

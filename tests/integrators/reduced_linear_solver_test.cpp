@@ -19,8 +19,8 @@ using C = ReducedLinearSolver::Coefficients;
 // The block matrix the integrators mean (see reduced_linear_solver.h):
 // free rows [α I, −β I ; −k K, m M − d D]; explicit form: v rows
 // [−k M_ff⁻¹K, I·m − d M_ff⁻¹ D] (here: multiplied back, see below); pinned rows p I.
-Eigen::MatrixXd block_matrix(const C& c, const Eigen::MatrixXd& K, const Eigen::MatrixXd& D,
-                             const Eigen::MatrixXd& M, std::span<const int> fixed) {
+Eigen::MatrixXd block_matrix(const C& c, const Eigen::MatrixXd& K, const Eigen::MatrixXd& D, const Eigen::MatrixXd& M,
+                             std::span<const int> fixed) {
   const int n = static_cast<int>(K.rows());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   A.topLeftCorner(n, n) = c.alpha * Eigen::MatrixXd::Identity(n, n);

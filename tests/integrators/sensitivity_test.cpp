@@ -71,7 +71,8 @@ double sensitivity_error(const Scene& scene, const std::string& model_name, cons
     Scene hi = scene, lo = scene;
     set_scene_parameter(hi, keys[k], p * (1 + eps));
     set_scene_parameter(lo, keys[k], p * (1 - eps));
-    const Vec fd = (run(hi, model_name, integrator, {}, dt).q - run(lo, model_name, integrator, {}, dt).q) / (2 * eps * p);
+    const Vec fd =
+        (run(hi, model_name, integrator, {}, dt).q - run(lo, model_name, integrator, {}, dt).q) / (2 * eps * p);
     const Vec exact = base.dq_dp.col(k);
     EXPECT_GT(exact.norm(), 0.0) << keys[k];
     const double err = (exact - fd).norm() / fd.norm();

@@ -99,7 +99,8 @@ TEST(SparseSolver, StronglyNonSymmetricMatrixGoesToLuOrConvergedGmres) {
 TEST(SparseSolver, CholmodOnANonSymmetricModelIsRefused) {
   StepMatrices m(hanging_cloth(), "yarn", 1);
   try {
-    SparseSolver s(m.model->pattern(), m.model->fixed_dofs(), {LinearSolverMethod::cholmod, m.model->asymmetric_terms()});
+    SparseSolver s(m.model->pattern(), m.model->fixed_dofs(),
+                   {LinearSolverMethod::cholmod, m.model->asymmetric_terms()});
     FAIL() << "cholmod accepted a non-symmetric step matrix";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("inertia, friction, wind"), std::string::npos) << e.what();

@@ -103,10 +103,11 @@ TEST(YarnAgreement, IdaArkodeDirkAndBackwardEulerAgreeAtSmallSteps) {
   const double E = rms(be_2h, be_h);  // ≈ BE's global error at h
   Positions extrapolated = be_h;
   for (size_t k = 0; k < extrapolated.x.size(); ++k) extrapolated.x[k] = 2 * be_h.x[k] - be_2h.x[k];
-  std::printf("[ agree ] displacement %.3e m, BE error estimate %.3e m; |ida-BE| %.3e |dirk-BE| %.3e "
-              "|ida-dirk| %.3e |ida-extrapolated BE| %.3e; wall BE %.2f+%.2f s ida %.2f s dirk %.2f s\n",
-              displacement, E, rms(ida, be_h), rms(dirk, be_h), rms(ida, dirk), rms(ida, extrapolated),
-              be_h.wall_s, be_2h.wall_s, ida.wall_s, dirk.wall_s);
+  std::printf(
+      "[ agree ] displacement %.3e m, BE error estimate %.3e m; |ida-BE| %.3e |dirk-BE| %.3e "
+      "|ida-dirk| %.3e |ida-extrapolated BE| %.3e; wall BE %.2f+%.2f s ida %.2f s dirk %.2f s\n",
+      displacement, E, rms(ida, be_h), rms(dirk, be_h), rms(ida, dirk), rms(ida, extrapolated), be_h.wall_s,
+      be_2h.wall_s, ida.wall_s, dirk.wall_s);
 
   EXPECT_GT(displacement, 5e-5) << "the cloth did not move";
   EXPECT_LT(E, 0.05 * displacement);

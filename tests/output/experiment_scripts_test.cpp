@@ -14,8 +14,8 @@
 namespace wl {
 namespace {
 
-constexpr double kSide = 0.1;      // material square [0, 0.1 m]²
-constexpr double kOffset = 1e-3;   // run A sits 1 mm above run B
+constexpr double kSide = 0.1;     // material square [0, 0.1 m]²
+constexpr double kOffset = 1e-3;  // run A sits 1 mm above run B
 
 // An affine deformation of the material plane (exact under barycentric interpolation).
 Eigen::Vector3d place(double u, double v, double t) {
@@ -146,10 +146,9 @@ TEST(CompareScript, YarnAgainstContinuumIsTheKnownOffset) {
   Runs runs;
   const auto csv = runs.dir / "distance.csv";
   const auto png = runs.dir / "distance.png";
-  const auto r = run_script("compare.py", test::shell_quote(runs.yarn.string()) + " " +
-                                              test::shell_quote(runs.coarse.string()) + " --out " +
-                                              test::shell_quote(csv.string()) + " --plot " +
-                                              test::shell_quote(png.string()));
+  const auto r = run_script(
+      "compare.py", test::shell_quote(runs.yarn.string()) + " " + test::shell_quote(runs.coarse.string()) + " --out " +
+                        test::shell_quote(csv.string()) + " --plot " + test::shell_quote(png.string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_one_millimetre(csv, 6.0 / 2.0);  // median step 6 s (B) over 2 s (A)
   EXPECT_GT(std::filesystem::file_size(png), 1000u);
@@ -160,9 +159,9 @@ TEST(CompareScript, ContinuumAgainstContinuumUsesUv) {
   ASSERT_TRUE(test::python_with("numpy, meshio"));
   Runs runs;
   const auto csv = runs.dir / "distance.csv";
-  const auto r = run_script("compare.py", test::shell_quote(runs.fine.string()) + " " +
-                                              test::shell_quote(runs.coarse.string()) + " --out " +
-                                              test::shell_quote(csv.string()));
+  const auto r =
+      run_script("compare.py", test::shell_quote(runs.fine.string()) + " " + test::shell_quote(runs.coarse.string()) +
+                                   " --out " + test::shell_quote(csv.string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_one_millimetre(csv, 6.0 / 1.0);
 }
@@ -184,9 +183,9 @@ TEST(CompareScript, PointsOutsideTheSurfaceUseTheNearestTriangle) {
     return f;
   });
   const auto csv = runs.dir / "distance.csv";
-  const auto r = run_script("compare.py", test::shell_quote(outside.string()) + " " +
-                                              test::shell_quote(runs.coarse.string()) + " --out " +
-                                              test::shell_quote(csv.string()));
+  const auto r =
+      run_script("compare.py", test::shell_quote(outside.string()) + " " + test::shell_quote(runs.coarse.string()) +
+                                   " --out " + test::shell_quote(csv.string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::string header;
   const auto rows = read_csv_rows(csv, header);
@@ -206,9 +205,9 @@ TEST(CompareScript, StepTimeRatioSkipsTheInitialStateRow) {
   const auto start = runs.dir / "start";
   write_run(start, "start", {0.0, 0.1, 0.2}, {0.0, 2.0, 3.0}, [](double t) { return yarn_frame(6, t, kOffset); });
   const auto csv = runs.dir / "distance.csv";
-  const auto r = run_script("compare.py", test::shell_quote(start.string()) + " " +
-                                              test::shell_quote(runs.coarse.string()) + " --out " +
-                                              test::shell_quote(csv.string()));
+  const auto r =
+      run_script("compare.py", test::shell_quote(start.string()) + " " + test::shell_quote(runs.coarse.string()) +
+                                   " --out " + test::shell_quote(csv.string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   expect_one_millimetre(csv, 6.0 / 2.5);
 }
@@ -217,16 +216,16 @@ TEST(CompareScript, MissingRunFolderExitsWithStatus2) {
   ASSERT_TRUE(test::python_with("numpy, meshio"));
   Runs runs;
   const auto missing = runs.dir / "no-such-run";
-  const auto r = run_script("compare.py", test::shell_quote(missing.string()) + " " +
-                                              test::shell_quote(runs.coarse.string()) + " --out " +
-                                              test::shell_quote((runs.dir / "d.csv").string()));
+  const auto r =
+      run_script("compare.py", test::shell_quote(missing.string()) + " " + test::shell_quote(runs.coarse.string()) +
+                                   " --out " + test::shell_quote((runs.dir / "d.csv").string()));
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find(missing.string()), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(runs.dir / "d.csv"));
   std::filesystem::remove(runs.coarse / "metrics.csv");
-  const auto r2 = run_script("compare.py", test::shell_quote(runs.yarn.string()) + " " +
-                                               test::shell_quote(runs.coarse.string()) + " --out " +
-                                               test::shell_quote((runs.dir / "d.csv").string()));
+  const auto r2 =
+      run_script("compare.py", test::shell_quote(runs.yarn.string()) + " " + test::shell_quote(runs.coarse.string()) +
+                                   " --out " + test::shell_quote((runs.dir / "d.csv").string()));
   EXPECT_EQ(r2.exit_code, 2) << r2.output;
   EXPECT_NE(r2.output.find("metrics.csv"), std::string::npos) << r2.output;
 }
@@ -239,8 +238,8 @@ TEST(PlotScripts, WriteImagesForSyntheticRuns) {
                                              test::shell_quote(tension.string()));
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_GT(std::filesystem::exists(tension) ? std::filesystem::file_size(tension) : 0u, 1000u);
-  r = run_script("plot_tension.py", test::shell_quote(runs.coarse.string()) + " --frame 9 --out " +
-                                        test::shell_quote(tension.string()));
+  r = run_script("plot_tension.py",
+                 test::shell_quote(runs.coarse.string()) + " --frame 9 --out " + test::shell_quote(tension.string()));
   EXPECT_EQ(r.exit_code, 2) << r.output;  // only 5 frames
   const auto energy = runs.dir / "energy.png";
   r = run_script("plot_run.py", test::shell_quote(runs.yarn.string()) + " --out " + test::shell_quote(energy.string()));

@@ -42,12 +42,15 @@ Json tricky_document() {
   Json doc = Json::object();
   doc.set("plain", "cloth");
   doc.set("quotes", "say \"hi\" \\ back/slash");
-  doc.set("controls", std::string("a\nb\tc\rd\x01" "e\x1f" "f\x7f\b\f"));
+  doc.set("controls", std::string("a\nb\tc\rd\x01"
+                                  "e\x1f"
+                                  "f\x7f\b\f"));
   doc.set("unicode", "\u03bc = 0.5 \u2013 \u20ac \U0001F600");
-  doc.set("invalid_utf8", std::string("a\xff" "b"));
+  doc.set("invalid_utf8", std::string("a\xff"
+                                      "b"));
   doc.set("numbers", std::vector<double>{0.1, 1.0 / 3.0, 1e-300, std::numeric_limits<double>::max(), -2.5, 0.0});
-  doc.set("integers", Json::array().push(0).push(-7).push(9007199254740993LL).push(
-                          std::numeric_limits<std::int64_t>::max()));
+  doc.set("integers",
+          Json::array().push(0).push(-7).push(9007199254740993LL).push(std::numeric_limits<std::int64_t>::max()));
   doc.set("nonfinite", Json::array().push(std::nan("")).push(HUGE_VAL));
   doc.set("flags", Json::array().push(true).push(false).push(nullptr));
   Json& nested = doc["nested"];

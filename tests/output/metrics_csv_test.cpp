@@ -25,7 +25,10 @@ TEST(MetricsCsv, WritesHeaderAndFullPrecisionRows) {
 
 TEST(MetricsCsv, InterruptedRunLeavesOnlyPartFile) {
   test::ScratchDir dir;
-  { MetricsCsv csv(dir / "metrics.csv", {"a"}); csv.row({1.0}); }
+  {
+    MetricsCsv csv(dir / "metrics.csv", {"a"});
+    csv.row({1.0});
+  }
   EXPECT_FALSE(std::filesystem::exists(dir / "metrics.csv"));
   EXPECT_EQ(test::read_text(dir / "metrics.csv.part"), "a\n1\n");
 }

@@ -67,7 +67,8 @@ inline ::testing::AssertionResult python_with(const std::string& modules) {
   if (r.exit_code != 0)
     return ::testing::AssertionFailure() << python() << " cannot import " << modules
                                          << " (declared dependencies: python3-numpy, python3-meshio, "
-                                            "python3-matplotlib):\n" << r.output;
+                                            "python3-matplotlib):\n"
+                                         << r.output;
   return ::testing::AssertionSuccess();
 }
 

@@ -54,8 +54,8 @@ TEST(PvdSeries, ListsFramesInOrderAfterEveryFrame) {
   for (int k = 0; k <= 3; ++k) {
     // Before frame k is added (as if the run stopped here), the series holds frames 0..k-1.
     if (k == 1 || k == 3) {  // each check starts Python (~1 s), so check two states
-      const auto r = test::run_python_script(dir.path(), kCheckScript,
-                                             test::shell_quote(series.pvd_path().string()) + want_times);
+      const auto r =
+          test::run_python_script(dir.path(), kCheckScript, test::shell_quote(series.pvd_path().string()) + want_times);
       EXPECT_EQ(r.exit_code, 0) << "after " << k << " frames:\n" << r.output;
     }
     if (k == 3) break;

@@ -15,11 +15,7 @@ Frame small_frame() {
   Frame f;
   f.time = 0.125;
   f.points.resize(5, 3);
-  f.points << 0.0, 0.0, 0.0,
-              1.0 / 3.0, 0.0, -2.5e-3,
-              1.0, 0.7, 0.1,
-              0.0, 1.0, 1e-15,
-              -2.0, 3.0, 12345.678;
+  f.points << 0.0, 0.0, 0.0, 1.0 / 3.0, 0.0, -2.5e-3, 1.0, 0.7, 0.1, 0.0, 1.0, 1e-15, -2.0, 3.0, 12345.678;
   f.cells.push_back({CellType::triangle, {0, 1, 2, 0, 2, 3}});
   f.cells.push_back({CellType::line, {0, 4, 4, 3, 1, 4}});
   f.point_data.push_back({"u", 1, {0.0, 0.1, 0.2, 1.0 / 7.0, -5.0}});

@@ -114,7 +114,7 @@ TEST(SceneFiles, VariantsDifferOnlyWhereNamed) {
   EXPECT_DOUBLE_EQ(p13.warp_type(1).stretch_modulus_Pa, 120000.0);  // T1 Yarn3
   EXPECT_DOUBLE_EQ(p13.warp_type(0).stretch_modulus_Pa, 500000.0);  // T1 Yarn1
   const Scene p23 = load_scene((kScenes / "hanging_wind_plain_23.toml").string());
-  EXPECT_DOUBLE_EQ(p23.weft_type(0).density_kg_per_m, 0.0025);   // T1 Yarn2
+  EXPECT_DOUBLE_EQ(p23.weft_type(0).density_kg_per_m, 0.0025);     // T1 Yarn2
   EXPECT_DOUBLE_EQ(p23.weft_type(1).bending_modulus_Pa, 0.00009);  // T1 Yarn3
   for (int n : {65, 129}) {
     const Scene s = load_scene((kScenes / ("hanging_wind_" + std::to_string(n) + ".toml")).string());
@@ -216,7 +216,8 @@ TEST(SceneErrors, WrongTypes) {
 
 TEST(SceneErrors, RadiusMustBePositiveAndBelowSpacing) {
   expect_error("[cloth]\nradius_m = -0.0005\n", 2, "cloth.radius_m", "a number > 0");
-  expect_error("[cloth]\nspacing_m = 0.001\nradius_m = 0.001\n", 3, "cloth.radius_m", "< cloth.spacing_m/√2 (= 0.0007071067811865475)");
+  expect_error("[cloth]\nspacing_m = 0.001\nradius_m = 0.001\n", 3, "cloth.radius_m",
+               "< cloth.spacing_m/√2 (= 0.0007071067811865475)");
   // R/L = 0.75: the lock angle 2 arcsin(R/L) would pass π/2.
   expect_error("[cloth]\nspacing_m = 0.001\nradius_m = 0.00075\n", 3, "cloth.radius_m", "lock angle");
   // Spacing below √2 × the default radius: the spacing is at fault.
@@ -225,8 +226,9 @@ TEST(SceneErrors, RadiusMustBePositiveAndBelowSpacing) {
 
 TEST(SceneErrors, YarnTypeNamesMustExistAndBeUsed) {
   const std::string types = "[yarn_types.yarn1]\ndensity_kg_per_m = 0.002\n";
-  SceneError e = expect_error(types + "[cloth]\nwarp_yarn_types = [\"yarn1\",\n  \"yarn2\"]\nweft_yarn_types = [\"yarn1\"]\n",
-                              5, "cloth.warp_yarn_types", "defined: yarn1");
+  SceneError e =
+      expect_error(types + "[cloth]\nwarp_yarn_types = [\"yarn1\",\n  \"yarn2\"]\nweft_yarn_types = [\"yarn1\"]\n", 5,
+                   "cloth.warp_yarn_types", "defined: yarn1");
   EXPECT_EQ(e.value, "\"yarn2\"");
   // A defined type that no yarn uses (e.g. lists forgotten) is an error, not silently ignored.
   expect_error(types, 1, "yarn_types.yarn1", "used by cloth.warp_yarn_types");

@@ -97,7 +97,9 @@ FdReport check_element(const Term& term, int e, const std::vector<LocalState>& g
       if (!(err <= opt.rtol)) {
         rep.ok = false;
         why << term.name() << " element " << e << " state " << s << ": " << what << " relative error " << err
-            << "\n analytic:\n" << a << "\n finite differences:\n" << fd << "\n";
+            << "\n analytic:\n"
+            << a << "\n finite differences:\n"
+            << fd << "\n";
       }
     };
     largest_f = std::max(largest_f, base.f.norm());
@@ -113,8 +115,8 @@ FdReport check_element(const Term& term, int e, const std::vector<LocalState>& g
       largest_d = std::max({largest_d, base.d.norm(), fd_d.norm()});
       record("df/dv", rel_error(base.d, fd_d, opt.floor), rep.dfdv_error, base.d, fd_d);
     } else if (fd_d.norm() > opt.floor + opt.rtol * base.f.norm()) {
-      record("df/dv (term declares none)", rel_error(Eigen::MatrixXd::Zero(n, n), fd_d, opt.floor),
-             rep.dfdv_error, Eigen::MatrixXd::Zero(n, n), fd_d);
+      record("df/dv (term declares none)", rel_error(Eigen::MatrixXd::Zero(n, n), fd_d, opt.floor), rep.dfdv_error,
+             Eigen::MatrixXd::Zero(n, n), fd_d);
     }
     if (term.provides_mass()) {
       // Inertial force ∂T/∂q − Ṁq̇ with T = ½ q̇ᵀM(q)q̇ (docs/models.md §3.1.2), M differenced in q and along q̇.
@@ -167,8 +169,8 @@ FdReport check_element(const Term& term, int e, const std::vector<LocalState>& g
   return rep;
 }
 
-FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(double)>& make, double p, int k,
-                                    int e, const std::vector<LocalState>& states, const FdOptions& opt) {
+FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(double)>& make, double p, int k, int e,
+                                    const std::vector<LocalState>& states, const FdOptions& opt) {
   FdReport rep;
   const double h = 1e-4 * p;  // relative step: truncation O(1e-8), roundoff well below
   const std::unique_ptr<Term> term = make(p), hi = make(p + h), lo = make(p - h);

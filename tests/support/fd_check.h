@@ -46,11 +46,10 @@ struct FdReport {
   double dfdq_error = 0.0;
   double dfdv_error = 0.0;
   double mass_error = 0.0;
-  std::string detail;        // what failed, where
+  std::string detail;  // what failed, where
 };
 
-FdReport check_element(const Term& term, int element, const std::vector<LocalState>& states,
-                       const FdOptions& opt = {});
+FdReport check_element(const Term& term, int element, const std::vector<LocalState>& states, const FdOptions& opt = {});
 
 // Parameter derivative (Term::parameter_derivative) of the term's k-th parameter
 // against central differences of the force in p, with a relative step:

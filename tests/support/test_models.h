@@ -23,7 +23,10 @@ class SpringChain : public TermModel {
   bool mass_depends_on_q() const override { return false; }
   Frame frame(double t, const Vec& q, const Vec& v) override;
   std::map<std::string, std::string> describe() const override { return {}; }
-  void set_initial(const Vec& q0, const Vec& v0) { q0_ = q0; v0_ = v0; }
+  void set_initial(const Vec& q0, const Vec& v0) {
+    q0_ = q0;
+    v0_ = v0;
+  }
   // Closed-form state at time t from (q0, v0) at 0, by eigen-decomposition of
   // the free block (q0[0] must be 0, the pinned position).
   void exact_state(double t, Vec& q, Vec& v) const;

@@ -146,7 +146,8 @@ TEST(BendingTerm, JacobianEqualsSeedEquations28And29) {
   const Mat3 K11 = 2 * kb / (l1 * l1 * s * U) *
                    (th * (P1 * d2 * d1.transpose() + d1 * d2.transpose() * P1 + c12 * P1) -
                     1.0 / s * (1.0 + th / s * c12) * P1 * d2 * d2.transpose() * P1);
-  const Mat3 K12 = -2 * kb / (l2 * l1 * s * U) * ((1.0 / s) * (1.0 + th / s * c12) * P1 * d2 * d1.transpose() + th * P1) * P2;
+  const Mat3 K12 =
+      -2 * kb / (l2 * l1 * s * U) * ((1.0 / s) * (1.0 + th / s * c12) * P1 * d2 * d1.transpose() + th * P1) * P2;
   EXPECT_LT((K.block<3, 3>(3, 3) - K11).norm(), 1e-12 * K11.norm());
   EXPECT_LT((K.block<3, 3>(3, 6) - K12).norm(), 1e-12 * K12.norm());
   // and the force, Cirio et al. 2016 eq. (21)

@@ -12,7 +12,7 @@
 namespace wl {
 namespace {
 
-constexpr double kL = 1e-3, kR = 0.5e-3;      // docs/models.md §8.4: L = 1 mm, R = 0.5 mm
+constexpr double kL = 1e-3, kR = 0.5e-3;       // docs/models.md §8.4: L = 1 mm, R = 0.5 mm
 constexpr double kKsU = 0.39, kKbU = 1.1e-10;  // warp k_s (N), k_b (N·m²)
 constexpr double kKsV = 0.13, kKbV = 0.9e-10;  // weft
 

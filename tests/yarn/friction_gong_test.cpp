@@ -35,7 +35,8 @@ TEST(GongFrictionLaw, PartialDerivativesMatchFiniteDifferences) {
         const double fd_d = (F(d + h, Fu, Fn) - F(d - h, Fu, Fn)) / (2 * h);
         const double fd_u = (F(d, Fu + h, Fn) - F(d, Fu - h, Fn)) / (2 * h);
         const double fd_n = (F(d, Fu, Fn + h) - F(d, Fu, Fn - h)) / (2 * h);
-        const std::string at = " at du=" + std::to_string(d) + " Fu=" + std::to_string(Fu) + " Fn=" + std::to_string(Fn);
+        const std::string at =
+            " at du=" + std::to_string(d) + " Fu=" + std::to_string(Fu) + " Fn=" + std::to_string(Fn);
         EXPECT_NEAR(r.d_delta, fd_d, 1e-6 * (1 + std::abs(fd_d))) << at;
         EXPECT_NEAR(r.d_Fu, fd_u, 1e-6 * (1 + std::abs(fd_u))) << at;
         EXPECT_NEAR(r.d_Fn, fd_n, 1e-6 * (1 + std::abs(fd_n))) << at;

@@ -14,7 +14,7 @@ TEST(GravityTerm, ForcesAndJacobianMatchFiniteDifferences) {
   t.add({0, 1, 2, 3, 4, 5, 6, 7}, 0.002);
   std::vector<test::LocalState> states = {
       {{0, 0, 0, 1e-3, 0, 0, 0, 1e-3}, {0, 0, 0, 0, 0, 0, 0, 0}},                        // at rest
-      {{0.4, -1.0, 2.0, 0.1, 0.7, -0.3, 0.2, 1.9}, {1, -2, 0.5, 0.3, 0, 1, 0.2, -0.4}}, // far from rest
+      {{0.4, -1.0, 2.0, 0.1, 0.7, -0.3, 0.2, 1.9}, {1, -2, 0.5, 0.3, 0, 1, 0.2, -0.4}},  // far from rest
       {{-2.0, 0.3, 5.0, 1.0, 1.0, 1.0, -1.0, -0.5}, {0, 0, 0, 0, 0, 0, 0, 0}}};
   auto r = test::check_element(t, 0, states);
   EXPECT_TRUE(r.ok) << r.detail;

@@ -116,8 +116,8 @@ TEST(SegmentInertiaTerm, ForceMatchesLagrangeEquation) {
     const Mat8 mdot = (mass_of(t, s.q + eps * s.v, s.v) - mass_of(t, s.q - eps * s.v, s.v)) / (2 * eps);
     const Vec8 expected = dTdq - mdot * s.v;
     const Vec8 f = force_of(t, s.q, s.v);
-    EXPECT_LT((f - expected).norm(), 1e-6 * expected.norm()) << "force " << f.transpose() << "\nLagrange "
-                                                              << expected.transpose();
+    EXPECT_LT((f - expected).norm(), 1e-6 * expected.norm())
+        << "force " << f.transpose() << "\nLagrange " << expected.transpose();
   }
 }
 
@@ -130,7 +130,8 @@ TEST(SegmentInertiaTerm, JacobiansMatchFiniteDifferences) {
   // Far from rest: random stretched/compressed states with large velocities.
   for (int k = 0; k < 4; ++k) {
     const State s = random_state(rng, k < 2 ? 1.0 : 10.0);
-    states.push_back({std::vector<double>(s.q.data(), s.q.data() + 8), std::vector<double>(s.v.data(), s.v.data() + 8)});
+    states.push_back(
+        {std::vector<double>(s.q.data(), s.q.data() + 8), std::vector<double>(s.v.data(), s.v.data() + 8)});
   }
   auto r = test::check_element(t, 0, states);
   EXPECT_TRUE(r.ok) << r.detail;

@@ -29,8 +29,8 @@ TEST(GongShearTerm, LockedDerivativesMatchFiniteDifferences) {
   GongShearTerm t(&Fn, 1.0, 0.25, 3.0, 0.6);
   t.add(kStencil, 1, 2.0, true);
   const double pl = t.lock_angle();
-  auto r = test::check_element(
-      t, 0, states_at({0.15, pl - 0.05, pl, pl + 0.05, 0.9, 1.4, 1.75, 2.2, kPi - pl, 2.95}, 1.0));
+  auto r =
+      test::check_element(t, 0, states_at({0.15, pl - 0.05, pl, pl + 0.05, 0.9, 1.4, 1.75, 2.2, kPi - pl, 2.95}, 1.0));
   EXPECT_TRUE(r.ok) << r.detail;
 }
 

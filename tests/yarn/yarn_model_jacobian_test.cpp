@@ -166,8 +166,8 @@ TEST_F(ShippedScene, JacobiansMatchDifferencesOfTheFrozenForcePerBlock) {
       const double nv = neglected_v.ref[r][c] > 0.0 ? neglected_v.relative(r, c) : 0.0;
       worst_neglected = std::max({worst_neglected, nq, nv});
       std::cout << "block " << block << ": df/dq rel. error " << dq.relative(r, c) << ", df/dv rel. error "
-                << (dv.ref[r][c] > 0.0 ? dv.relative(r, c) : 0.0) << "; neglected part (frozen F_n, F_u) "
-                << nq << " of df/dq, " << nv << " of df/dv\n";
+                << (dv.ref[r][c] > 0.0 ? dv.relative(r, c) : 0.0) << "; neglected part (frozen F_n, F_u) " << nq
+                << " of df/dq, " << nv << " of df/dv\n";
     }
   // docs/models.md §5.4: the neglected part is real (F_n and F_u do depend on the
   // state; measured 9.0e-5 of the x–u block) and below 2e-4 of every block here.

@@ -247,8 +247,8 @@ class HangingYarn : public TermModel {
     auto gravity = std::make_unique<GravityTerm>(Vec3(0, 0, -9.81));
     auto bending = std::make_unique<BendingTerm>();
     for (int i = 0; i + 1 < n; ++i) {
-      const std::array<int, 8> s{3 * i, 3 * i + 1, 3 * i + 2, 3 * i + 3, 3 * i + 4, 3 * i + 5,
-                                 encode_constant(i), encode_constant(i + 1)};
+      const std::array<int, 8> s{3 * i,     3 * i + 1, 3 * i + 2,          3 * i + 3,
+                                 3 * i + 4, 3 * i + 5, encode_constant(i), encode_constant(i + 1)};
       inertia->add(s, rho);
       stretch->add(s, ks);
       gravity->add(s, rho);
@@ -307,7 +307,7 @@ TEST(YarnModel, PublishedHangingClothSwingsDownwind) {
   for (const char* name : {"be-linear", "be-newton"}) {
     YarnModel m(s);
     BackwardEuler be(std::string(name) == "be-linear" ? BackwardEuler::Variant::linear
-                                                     : BackwardEuler::Variant::newton);
+                                                      : BackwardEuler::Variant::newton);
     IntegratorOptions opt;
     opt.dt = s.dt_s;
     be.initialize(m, 0.0, m.initial_q(), m.initial_v(), opt);

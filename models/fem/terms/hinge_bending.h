@@ -50,7 +50,7 @@ class HingeBendingTerm : public StencilTerm<12> {
 
  private:
   double k_warp_, k_weft_;
-  std::vector<double> coeff_;  // k_e ‖ē‖²/(Ā₁+Ā₂)
+  std::vector<double> coeff_;                    // k_e ‖ē‖²/(Ā₁+Ā₂)
   std::vector<double> warp_share_, weft_share_;  // d_v², d_u² times ‖ē‖²/(Ā₁+Ā₂)
   std::vector<double> theta0_;
 };

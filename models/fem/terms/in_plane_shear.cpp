@@ -7,8 +7,11 @@
 namespace wl {
 
 InPlaneShearTerm::InPlaneShearTerm(double k, double lock_angle, double lock_exponent)
-    : k_(k), locking_(lock_exponent > 0.0 && lock_angle > 0.0 && lock_angle < M_PI / 2),
-      lock_angle_(lock_angle), s_lock_(std::sin(lock_angle)), m_(lock_exponent) {}
+    : k_(k),
+      locking_(lock_exponent > 0.0 && lock_angle > 0.0 && lock_angle < M_PI / 2),
+      lock_angle_(lock_angle),
+      s_lock_(std::sin(lock_angle)),
+      m_(lock_exponent) {}
 
 void InPlaneShearTerm::add(const std::array<int, 9>& stencil, const TriangleRest& rest) {
   stencils_.push_back(stencil);

@@ -33,10 +33,10 @@ double beta(double t) {
 }
 
 struct Geometry {
-  Vec3 e1, e2;     // unit directions of x1−x0 and x0−x2 (both along +u)
-  double l1, l2;   // segment lengths
-  Vec3 cross;      // e1 × e2, ‖·‖ = sin θ
-  double c;        // cos θ = e1·e2
+  Vec3 e1, e2;    // unit directions of x1−x0 and x0−x2 (both along +u)
+  double l1, l2;  // segment lengths
+  Vec3 cross;     // e1 × e2, ‖·‖ = sin θ
+  double c;       // cos θ = e1·e2
   double theta;
 };
 

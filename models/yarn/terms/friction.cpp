@@ -10,7 +10,8 @@ FrictionTerm::FrictionTerm(const char* who, const std::vector<double>* normal_fo
     : normal_force_(normal_force), mu_(mu), kf_(kf), df_(df), p_(p) {
   std::ostringstream bad;
   if (!(mu >= 0.0)) bad << "mu = " << mu << " (expected >= 0)";
-  else if (kf_positive ? !(kf > 0.0) : !(kf >= 0.0)) bad << "kf = " << kf << (kf_positive ? " (expected > 0)" : " (expected >= 0)");
+  else if (kf_positive ? !(kf > 0.0) : !(kf >= 0.0))
+    bad << "kf = " << kf << (kf_positive ? " (expected > 0)" : " (expected >= 0)");
   else if (!(df >= 0.0)) bad << "df = " << df << " (expected >= 0)";
   else if (!(p > 0.0)) bad << "p = " << p << " (expected > 0)";
   if (!bad.str().empty()) throw std::invalid_argument(std::string(who) + ": " + bad.str());

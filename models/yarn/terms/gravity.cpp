@@ -45,8 +45,8 @@ void GravityTerm::evaluate(int e, const double* q, const double*, const ElementO
     k.setZero();
     const Vec3 hg = 0.5 * rho * g_;
     for (int b : {0, 3}) {
-      k.block<3, 1>(b, 6) = -hg;  // ∂F_x/∂u0
-      k.block<3, 1>(b, 7) = hg;   // ∂F_x/∂u1
+      k.block<3, 1>(b, 6) = -hg;              // ∂F_x/∂u0
+      k.block<3, 1>(b, 7) = hg;               // ∂F_x/∂u1
       k.block<1, 3>(6, b) = -hg.transpose();  // ∂F_u0/∂x
       k.block<1, 3>(7, b) = hg.transpose();   // ∂F_u1/∂x
     }

@@ -28,8 +28,8 @@ void StretchTerm::local_evaluate(const double* q, double ks, double* f_out, doub
   const double du = q[7] - q[6];
   const Vec3 e = x1 - x0;
   const double l = e.norm();
-  const Vec3 d = e / l;          // d_1, Cirio et al. 2016 eq. (4)
-  const Vec3 w = e / du;         // w, ‖w‖ = l/Δu
+  const Vec3 d = e / l;   // d_1, Cirio et al. 2016 eq. (4)
+  const Vec3 w = e / du;  // w, ‖w‖ = l/Δu
   const double wn = l / du;
 
   Eigen::Map<Local> f(f_out);
