@@ -16,6 +16,7 @@
 #include "calibration/scene_parameters.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_model.h"
+#include "models/model_factory.h"
 #include "models/yarn/yarn_model.h"
 
 namespace wl {
@@ -23,12 +24,6 @@ namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
 using Clock = std::chrono::steady_clock;
-
-std::unique_ptr<Model> build_model(const Scene& scene, const std::string& name) {
-  if (name == "yarn") return std::make_unique<YarnModel>(scene);
-  if (name == "fem") return std::make_unique<FemModel>(scene);
-  throw TrajectoryFitError("model '" + name + "': expected 'yarn' or 'fem'");
-}
 
 // H_k per frame (3·points × DoFs) and which points it sees: a point the model
 // cannot observe (a crossing outside the continuum's mesh) has zero rows and is
@@ -105,7 +100,7 @@ class Simulator {
     if (!make_integrator(integrator_)->offers_sensitivities())
       throw TrajectoryFitError("integrator '" + integrator_ +
                                "' offers no parameter sensitivities; use be-linear or be-newton");
-    const std::unique_ptr<Model> model = build_model(scene, opt.model);
+    const std::unique_ptr<Model> model = make_model(scene, opt.model);
     const std::vector<std::string> keys = model->parameter_keys();
     for (const std::string& key : opt.free) {
       scene_parameter(scene, key);  // throws ParameterKeyError for an unknown key
@@ -122,7 +117,7 @@ class Simulator {
     for (size_t k = 0; k < p.size(); ++k) set_scene_parameter(s, opt_.free[k], p[k]);
     Simulation sim;
     try {
-      const std::unique_ptr<Model> model = build_model(s, opt_.model);
+      const std::unique_ptr<Model> model = make_model(s, opt_.model);
       const std::unique_ptr<Integrator> in = make_integrator(integrator_);
       in->track_sensitivities(opt_.free);
       IntegratorOptions io;
@@ -241,6 +236,9 @@ TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetF
   const auto wall0 = Clock::now();
   const std::clock_t cpu0 = std::clock();
   if (opt.free.empty()) throw TrajectoryFitError("no parameter to fit: name at least one key with --free");
+  const std::vector<std::string> models = model_names();
+  if (std::find(models.begin(), models.end(), opt.model) == models.end())
+    throw TrajectoryFitError("model '" + opt.model + "': expected 'yarn' or 'fem'");
   if (!(opt.bound_factor > 1.0)) throw TrajectoryFitError("bound factor must be > 1");
   std::vector<TargetFrame> frames;
   for (const TargetFrame& f : target)

@@ -12,13 +12,13 @@ namespace wl {
 // derivatives are second derivatives of f, O(h²) per step, docs/models.md §9.2):
 //   A₀ ∂Δv/∂p = h(∂f/∂p + K₀(S_q + hS_v) + D₀S_v) − (∂M/∂p + ∂M/∂q·S_q)Δv.
 void BackwardEuler::propagate_linear_sensitivities(double h, const Vec& dv) {
-  Vec dfdp, rhs, x;
+  Vec dfdp, rhs, x, mw(dv.size());
   for (Eigen::Index k = 0; k < dq_dp_.cols(); ++k) {
     const std::string& key = sensitivity_keys_[k];
     model_->force_parameter_derivative(key, t_, q_, v_, dfdp);
-    const Vec sq = dq_dp_.col(k), sv = dv_dp_.col(k);
+    const auto sq = dq_dp_.col(k), sv = dv_dp_.col(k);
     rhs = h * (dfdp + ev_.dfdq * (sq + h * sv) + ev_.dfdv * sv);
-    Vec mw = Vec::Zero(rhs.size());
+    mw.setZero();
     model_->mass_parameter_product(key, q_, dv, mw);
     model_->mass_directional_product(q_, sq, dv, mw);
     rhs -= mw;
@@ -36,13 +36,13 @@ void BackwardEuler::propagate_linear_sensitivities(double h, const Vec& dv) {
 void BackwardEuler::propagate_newton_sensitivities(double h, const Vec& q0, const Vec& v0, const SparseMatrix& m0) {
   form_step_matrix(h);
   const Vec dv = v_ - v0;
-  Vec dfdp, rhs, x;
+  Vec dfdp, rhs, x, mw(dv.size());
   for (Eigen::Index k = 0; k < dq_dp_.cols(); ++k) {
     const std::string& key = sensitivity_keys_[k];
     model_->force_parameter_derivative(key, t_ + h, q_, v_, dfdp);
-    const Vec sq = dq_dp_.col(k), sv = dv_dp_.col(k);
+    const auto sq = dq_dp_.col(k), sv = dv_dp_.col(k);
     rhs = m0 * sv + h * (ev_.dfdq * sq) + h * dfdp;
-    Vec mw = Vec::Zero(rhs.size());
+    mw.setZero();
     model_->mass_parameter_product(key, q0, dv, mw);
     model_->mass_directional_product(q0, sq, dv, mw);
     rhs -= mw;

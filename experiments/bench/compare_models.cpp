@@ -22,9 +22,9 @@
 #include <thread>
 #include <vector>
 
-#include "experiments/driver/model_factory.h"
 #include "integrators/backward_euler.h"
 #include "integrators/sparse_solver.h"
+#include "models/model_factory.h"
 #include "models/scene/scene.h"
 
 namespace wl::bench {

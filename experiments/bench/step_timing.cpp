@@ -6,9 +6,9 @@
 #include <stdexcept>
 
 #include "experiments/driver/memory_estimate.h"
-#include "experiments/driver/model_factory.h"
 #include "integrators/backward_euler.h"
 #include "integrators/sparse_solver.h"
+#include "models/model_factory.h"
 
 namespace wl::bench {
 

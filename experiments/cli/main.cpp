@@ -15,7 +15,6 @@
 #include "experiments/driver/fidelity.h"
 #include "experiments/driver/fit_command.h"
 #include "experiments/driver/interrupt.h"
-#include "experiments/driver/model_factory.h"
 #include "experiments/driver/run.h"
 #include "experiments/driver/run_settings.h"
 #include "experiments/driver/stability.h"
@@ -24,6 +23,7 @@
 #include "experiments/output/run_reader.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_material.h"
+#include "models/model_factory.h"
 #include "models/scene/scene.h"
 
 namespace {

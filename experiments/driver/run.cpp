@@ -9,12 +9,12 @@
 #include <sstream>
 
 #include "experiments/driver/interrupt.h"
-#include "experiments/driver/model_factory.h"
 #include "experiments/driver/run_settings.h"
 #include "experiments/driver/run_summary.h"
 #include "experiments/output/metrics_csv.h"
 #include "experiments/output/pvd_series.h"
 #include "experiments/output/run_folder.h"
+#include "models/model_factory.h"
 
 namespace wl {
 namespace {

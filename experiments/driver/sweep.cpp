@@ -11,9 +11,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "experiments/driver/model_factory.h"
 #include "experiments/output/atomic_file.h"
 #include "models/fem/fem_material.h"
+#include "models/model_factory.h"
 
 namespace wl {
 

@@ -8,10 +8,10 @@
 #include <stdexcept>
 
 #include "experiments/driver/experiment_meta.h"
-#include "experiments/driver/model_factory.h"
 #include "experiments/output/atomic_file.h"
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
+#include "models/model_factory.h"
 
 namespace wl {
 

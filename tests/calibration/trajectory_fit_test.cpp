@@ -13,33 +13,12 @@
 #include "models/fem/fem_model.h"
 #include "models/scene/parameter_keys.h"
 #include "models/yarn/yarn_model.h"
+#include "tests/support/test_scenes.h"
 
 namespace wl {
 namespace {
 
-Scene small_scene() {
-  Scene s = parse_scene(R"(
-[cloth]
-warps = 5
-wefts = 5
-[pose]
-kind = "upright"
-[[handles]]
-node = [0, 0]
-[[handles]]
-node = [4, 0]
-[wind]
-velocity_m_per_s = [0.0, 5.0, 0.0]
-air_density_kg_per_m3 = 2.0
-[time]
-duration_s = 0.03
-dt_s = 0.001
-output_interval_s = 0.01
-integrator = "be-newton"
-)",
-                        "fit.toml");
-  return s;
-}
+Scene small_scene() { return parse_scene(test::hanging_cloth_toml(5, 0.03, "be-newton"), "fit.toml"); }
 
 // The model's observed points at the output times: `observe(model, q)` gives n × 3.
 template <class M>

@@ -3,58 +3,38 @@
 // cheapest variant within the tolerance, and the Pareto chart script draws them.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "tests/output/output_test_util.h"
+#include "tests/support/test_scenes.h"
+
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Result {
-  int code;
-  std::string output;
-};
-
-Result run(const std::string& command, const fs::path& dir) {
-  const fs::path log = dir / "cli.log";
-  const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  fs::remove(log);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
+using Result = wl::test::CommandResult;
 
 class FidelityCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("weavelab_fidelity_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     scene_ = dir_ / "tiny.toml";
-    std::ofstream(scene_) << "[cloth]\nwarps = 5\nwefts = 5\n[[handles]]\nnode = [0, 0]\n[[handles]]\nnode = [4, 0]\n"
-                             "[wind]\nvelocity_m_per_s = [0.0, 5.0, 0.0]\nair_density_kg_per_m3 = 2.0\n"
-                             "[time]\nduration_s = 0.03\ndt_s = 0.001\noutput_interval_s = 0.01\n";
+    std::ofstream(scene_) << wl::test::hanging_cloth_toml(5, 0.03);
   }
-  void TearDown() override { fs::remove_all(dir_); }
   Result fidelity(const std::string& options) {
-    return run(std::string(WEAVELAB_CLI) + " fidelity '" + scene_.string() + "' --quiet --out '" + out().string() +
-                   "' " + options,
-               dir_);
+    return wl::test::run_command(std::string(WEAVELAB_CLI) + " fidelity '" + scene_.string() + "' --quiet --out '" +
+                                 out().string() + "' " + options);
   }
   void expect_refused(const std::string& options, const std::vector<std::string>& fragments) {
     const Result r = fidelity(options);
-    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_EQ(r.exit_code, 2) << r.output;
     for (const auto& f : fragments)
       EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
     EXPECT_FALSE(fs::exists(out())) << "output written for bad input";
   }
   fs::path out() const { return dir_ / "out"; }
-  fs::path dir_, scene_;
+  wl::test::ScratchDir dir_;
+  fs::path scene_;
 };
 
 TEST_F(FidelityCli, UnknownVariantIsRefused) {
@@ -78,7 +58,7 @@ TEST_F(FidelityCli, BadParameterFileIsRefused) {
 
 TEST_F(FidelityCli, WritesTheLadderAndNamesTheCheapestVariant) {
   const Result r = fidelity("--variants frozen_sliding,fem_first_guess --tolerance 1 --repeats 2");
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   // A 1 m tolerance admits every variant, so the cheapest run of the three is named.
   EXPECT_NE(r.output.find("cheapest within 1e+03 mm"), std::string::npos) << r.output;
   std::ifstream csv(out() / "fidelity.csv");
@@ -98,10 +78,9 @@ TEST_F(FidelityCli, WritesTheLadderAndNamesTheCheapestVariant) {
   EXPECT_EQ(variants, (std::vector<std::string>{"full", "frozen_sliding", "fem_first_guess"}));
   EXPECT_NE(r.output.find("cloth): " + cheapest + ","), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(out() / "fidelity.json"));
-  const Result plot = run("/usr/bin/python3 '" + std::string(WEAVELAB_SOURCE_DIR) + "/experiments/plot_fidelity.py' '" +
-                              out().string() + "'",
-                          dir_);
-  EXPECT_EQ(plot.code, 0) << plot.output;
+  const Result plot = wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
+                                            "/experiments/plot_fidelity.py' '" + out().string() + "'");
+  EXPECT_EQ(plot.exit_code, 0) << plot.output;
   EXPECT_GT(fs::file_size(out() / "fidelity.png"), 1000u);
   EXPECT_GT(fs::file_size(out() / "fidelity.svg"), 1000u);
 }

@@ -5,52 +5,39 @@
 #include <fstream>
 #include <sstream>
 
-#include "tests/support/cli_runner.h"
+#include "tests/output/output_test_util.h"
+#include "tests/support/test_scenes.h"
 
 namespace wl {
 namespace {
 
 namespace fs = std::filesystem;
 
-const char* kScene = R"(
-[cloth]
-warps = 5
-wefts = 5
-[pose]
-kind = "upright"
-[[handles]]
-node = [0, 0]
-[[handles]]
-node = [4, 0]
-[time]
-duration_s = 0.02
-dt_s = 0.001
-output_interval_s = 0.01
-integrator = "be-newton"
-)";
-
 class FitCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    scene_ = dir_.path / "small.toml";
-    std::ofstream(scene_) << kScene;
-    const auto r = test::run_cli("run '" + scene_.string() + "' --quiet --out '" + target().string() + "'", dir_.path);
-    ASSERT_EQ(r.code, 0) << r.output;
+    scene_ = dir_ / "small.toml";
+    std::ofstream(scene_) << test::hanging_cloth_toml(5, 0.02, "be-newton");
+    const auto r =
+        cli("run " + test::shell_quote(scene_.string()) + " --quiet --out " + test::shell_quote(target().string()));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
   }
-  fs::path target() const { return dir_.path / "target"; }
-  test::CliResult fit(const std::string& args, const fs::path& out) {
-    return test::run_cli("fit '" + scene_.string() + "' --target '" + target().string() + "' --quiet --out '" +
-                             out.string() + "' " + args,
-                         dir_.path);
+  static test::CommandResult cli(const std::string& args) {
+    return test::run_command(std::string(WEAVELAB_CLI) + " " + args);
   }
-  test::TestFolder dir_;
+  fs::path target() const { return dir_ / "target"; }
+  test::CommandResult fit(const std::string& args, const fs::path& out) {
+    return cli("fit " + test::shell_quote(scene_.string()) + " --target " + test::shell_quote(target().string()) +
+               " --quiet --out " + test::shell_quote(out.string()) + " " + args);
+  }
+  test::ScratchDir dir_;
   fs::path scene_;
 };
 
 TEST_F(FitCli, RecoversTheShearModulusOfItsOwnRun) {
-  const fs::path out = dir_.path / "fit";
+  const fs::path out = dir_ / "fit";
   const auto r = fit("--free contact.shear_modulus_Pa --start contact.shear_modulus_Pa=1500", out);
-  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* file : {"fit.json", "convergence.csv", "frames.csv"}) EXPECT_TRUE(fs::exists(out / file)) << file;
   std::stringstream json;
   json << std::ifstream(out / "fit.json").rdbuf();
@@ -61,7 +48,7 @@ TEST_F(FitCli, RecoversTheShearModulusOfItsOwnRun) {
 }
 
 TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
-  const fs::path out = dir_.path / "never";
+  const fs::path out = dir_ / "never";
   const struct {
     std::string args, says;
   } cases[] = {
@@ -75,14 +62,14 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
   };
   for (const auto& c : cases) {
     const auto r = fit(c.args, out);
-    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
-  const auto r = test::run_cli("fit '" + scene_.string() + "' --target '" + (dir_.path / "nothing").string() +
-                                   "' --free contact.shear_modulus_Pa --out '" + out.string() + "'",
-                               dir_.path);
-  EXPECT_EQ(r.code, 2) << r.output;
+  const auto r =
+      cli("fit " + test::shell_quote(scene_.string()) + " --target " + test::shell_quote((dir_ / "nothing").string()) +
+          " --free contact.shear_modulus_Pa --out " + test::shell_quote(out.string()));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("nothing"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
 }

@@ -2,7 +2,7 @@
 // same M(q) as a full evaluation, without the force terms and auxiliaries.
 #include <gtest/gtest.h>
 
-#include "experiments/driver/model_factory.h"
+#include "models/model_factory.h"
 #include "models/scene/scene.h"
 
 namespace wl {

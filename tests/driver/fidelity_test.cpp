@@ -6,8 +6,8 @@
 #include <filesystem>
 
 #include "experiments/driver/fidelity.h"
-#include "experiments/driver/model_factory.h"
 #include "experiments/driver/sweep.h"
+#include "models/model_factory.h"
 
 namespace wl {
 namespace {

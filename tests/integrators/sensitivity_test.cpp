@@ -6,37 +6,18 @@
 #include <cmath>
 
 #include "calibration/scene_parameters.h"
-#include "experiments/driver/model_factory.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_material.h"
+#include "models/model_factory.h"
 #include "models/scene/parameter_keys.h"
+#include "tests/support/test_scenes.h"
 
 namespace wl {
 namespace {
 
-// A 6×6 cloth hanging from two handles in wind (default physics: sliding,
-// Gong shear and friction); `extra` adds tables.
-Scene hanging(const std::string& extra = "") {
-  return parse_scene(R"(
-[cloth]
-warps = 6
-wefts = 6
-[pose]
-kind = "upright"
-[[handles]]
-node = [0, 0]
-[[handles]]
-node = [5, 0]
-[wind]
-velocity_m_per_s = [0.0, 5.0, 0.0]
-air_density_kg_per_m3 = 2.0
-[time]
-duration_s = 0.02
-dt_s = 0.001
-output_interval_s = 0.01
-)" + extra,
-                     "sensitivity.toml");
-}
+// A 6×6 cloth hanging in wind for 20 steps (default physics: sliding, Gong
+// shear and friction).
+Scene hanging() { return parse_scene(test::hanging_cloth_toml(6, 0.02), "sensitivity.toml"); }
 
 struct Run {
   Vec q;

@@ -4,9 +4,9 @@
 // preconditioner), and as whole be-linear trajectories.
 #include <gtest/gtest.h>
 
-#include "experiments/driver/model_factory.h"
 #include "integrators/backward_euler.h"
 #include "integrators/sparse_solver.h"
+#include "models/model_factory.h"
 #include "models/scene/scene.h"
 
 namespace wl {

@@ -1,4 +1,4 @@
-#include "experiments/driver/model_factory.h"
+#include "models/model_factory.h"
 
 #include <stdexcept>
 
