@@ -8,9 +8,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
-      -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" >/dev/null
+      -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DWEAVELAB_TEST_TIMEOUT=3000 \
+      ${WEAVELAB_CMAKE_ARGS:-} >/dev/null
 cmake --build build-sanitize -j"$(nproc)" --target weavelab_tests
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build-sanitize
-ctest --output-on-failure -j"$(nproc)" --timeout 3000 "$@"
+ctest --output-on-failure -j"$(nproc)" "$@"
