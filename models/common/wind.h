@@ -24,6 +24,7 @@ class WindTerm : public StencilTerm<9> {
   void add(const std::array<int, 9>& stencil);
 
   std::string name() const override { return "wind"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<WindTerm>(*this); }
   bool imex_explicit() const override { return true; }  // non-stiff external load
   bool conservative() const override { return false; }
   bool has_velocity_jacobian() const override { return true; }

@@ -5,6 +5,7 @@
 #pragma once
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,9 +34,17 @@ struct Evaluation {
   SparseMatrix mass;  // M(q)
 };
 
+// State (docs/design.md §3.4): a model holds its history (friction anchors,
+// changed only by accept_step) and the auxiliaries of its last evaluation
+// (contact normals, friction's frozen F_u and F_n, changed only by evaluate).
+// Every other member is const and reads them. A model is not safe to share
+// between threads: give each thread its own clone().
 class Model {
  public:
   virtual ~Model() = default;
+  // An independent copy with the same history and auxiliaries: evaluating the
+  // clone and the original at the same state gives identical results.
+  virtual std::unique_ptr<Model> clone() const = 0;
   virtual std::string name() const = 0;
   virtual int num_dofs() const = 0;
   virtual Vec initial_q() const = 0;
@@ -54,6 +63,8 @@ class Model {
   virtual const SparseMatrix& pattern() const = 0;
   // Fills what `flags` asks for; matrices keep pattern()'s structure. With
   // kMass alone only M(q) is formed (the force is then not meaningful).
+  // Otherwise it first prepares the auxiliaries at (t, q, v), which the
+  // members documented as "of the last evaluation" then read.
   virtual void evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) = 0;
   // Potential energy of the conservative terms.
   virtual double potential_energy(const Vec& q) const = 0;
@@ -71,14 +82,16 @@ class Model {
     for (Eigen::Index i = 0; i + 2 < v.size(); i += 3) m = std::max(m, v.segment<3>(i).norm());
     return m;
   }
-  // Output frame for the writers; `ev` holds a force evaluation at (t, q, v).
-  virtual Frame frame(double t, const Vec& q, const Vec& v) = 0;
+  // Output frame for the writers at (t, q, v); friction's sliding state is that
+  // of the last evaluation.
+  virtual Frame frame(double t, const Vec& q, const Vec& v) const = 0;
   // Material parameters (scene keys) whose force derivative the model provides.
   virtual std::vector<std::string> parameter_keys() const { return {}; }
   // Sets dfdp = ∂f/∂p at (t, q, v) for the parameter `key`; false (dfdp zero)
   // when the force does not depend on it. Auxiliary quantities are those of
   // the last evaluate(), so evaluate at the same state first.
-  virtual bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v, Vec& dfdp) {
+  virtual bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v,
+                                          Vec& dfdp) const {
     dfdp = Vec::Zero(num_dofs());
     return false;
   }

@@ -4,6 +4,7 @@
 // calls the term per element and scatters into global vectors and matrices.
 #pragma once
 #include <array>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -21,19 +22,27 @@ struct ElementOutput {
   double* mass = nullptr;   // mass block, n×n (only terms with provides_mass())
 };
 
-// Global state a term may read before its elements are evaluated (auxiliary
-// quantities such as contact normal forces, or the force already assembled from
-// the other terms, which friction needs as F_u, docs/models.md §3.7.1).
+// Global state a term may read in prepare(), before its elements are evaluated:
+// the auxiliary quantities of this evaluation (contact normal forces) and the
+// force already assembled from the other terms, which friction needs as F_u
+// (docs/models.md §3.7.1). Terms copy what they need: they keep no reference
+// to it (docs/design.md §3.4).
 struct EvalContext {
   double t = 0.0;
   const Vec* q = nullptr;
   const Vec* v = nullptr;
   const Vec* force_so_far = nullptr;  // only for terms with stage() == 1
+  // Contact normal force F_n per crossing node id [N] (docs/models.md §3.6);
+  // empty when the model computes none (then F_n = 0).
+  std::span<const double> normal_force = {};
 };
 
 class Term {
  public:
   virtual ~Term() = default;
+  // An independent copy, history (friction anchors) and frozen inputs included;
+  // models clone their terms for concurrent use (docs/design.md §3.4).
+  virtual std::unique_ptr<Term> clone() const = 0;
   virtual std::string name() const = 0;
   virtual int stencil_size() const = 0;
   virtual int num_elements() const = 0;
@@ -53,7 +62,8 @@ class Term {
   // wind) that an additive Runge–Kutta method treats explicitly.
   virtual bool imex_explicit() const { return false; }
 
-  // Called once per model evaluation before any element, serially.
+  // Called once per model evaluation before any element, serially: the one
+  // place a term freezes inputs for its elements (docs/design.md §3.4).
   virtual void prepare(const EvalContext&) {}
   // Called after every accepted time step (history such as friction anchors).
   virtual void accept_step(const EvalContext&, double /*h*/) {}

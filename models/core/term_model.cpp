@@ -17,6 +17,17 @@ double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v, Evalua
   return 0.5 * v.dot(scratch.mass * v);
 }
 
+TermModel::TermModel(const TermModel& other)
+    : Model(other),
+      num_dofs_(other.num_dofs_),
+      q0_(other.q0_),
+      v0_(other.v0_),
+      constants_(other.constants_),
+      fixed_(other.fixed_) {
+  for (const auto& t : other.terms_) terms_.push_back(t->clone());
+  finalize();
+}
+
 void TermModel::finalize() {
   std::vector<Term*> raw;
   for (auto& t : terms_) raw.push_back(t.get());
@@ -41,8 +52,8 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
     assembly_->add_stage(0, q, v, constants_, req, out.force, nullptr, nullptr, &out.mass);
     return;
   }
-  update_auxiliary(t, q, v);
   EvalContext ctx{t, &q, &v, nullptr};
+  prepare_auxiliary(t, q, v, ctx);
   bool has_stage1 = false;
   for (auto& term : terms_) {
     if (term->stage() == 0) term->prepare(ctx);
@@ -81,7 +92,8 @@ std::vector<std::string> TermModel::asymmetric_terms() const {
   return names;
 }
 
-bool TermModel::force_parameter_derivative(const std::string& key, double, const Vec& q, const Vec& v, Vec& dfdp) {
+bool TermModel::force_parameter_derivative(const std::string& key, double, const Vec& q, const Vec& v,
+                                           Vec& dfdp) const {
   dfdp = Vec::Zero(num_dofs_);
   return assembly_->add_parameter_derivative(key, q, v, constants_, dfdp);
 }

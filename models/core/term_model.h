@@ -21,7 +21,8 @@ class TermModel : public Model {
   void accept_step(double t, const Vec& q, const Vec& v, double h) override;
   std::vector<std::string> parameter_keys() const override;
   std::vector<std::string> asymmetric_terms() const override;
-  bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v, Vec& dfdp) override;
+  bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v,
+                                  Vec& dfdp) const override;
   bool mass_parameter_product(const std::string& key, const Vec& q, const Vec& w, Vec& out) const override;
   void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const override;
 
@@ -29,9 +30,15 @@ class TermModel : public Model {
   const Vec& constants() const { return constants_; }
 
  protected:
-  // Global auxiliary quantities (e.g. contact normal forces) that terms read as
-  // frozen inputs; called at the start of every evaluation.
-  virtual void update_auxiliary(double /*t*/, const Vec& /*q*/, const Vec& /*v*/) {}
+  TermModel() = default;
+  // Copies the data and clones every term (history included), then builds the
+  // assembly over the clones: what a derived model's clone() starts from.
+  TermModel(const TermModel& other);
+  TermModel& operator=(const TermModel&) = delete;
+
+  // Global auxiliary quantities (contact normal forces) at (t, q, v), computed
+  // at the start of every evaluation and handed to the terms' prepare() in ctx.
+  virtual void prepare_auxiliary(double /*t*/, const Vec& /*q*/, const Vec& /*v*/, EvalContext& /*ctx*/) {}
   // Derived constructors fill num_dofs_, q0_, v0_, fixed_, constants_ and
   // terms_, then call finalize().
   void finalize();

@@ -198,7 +198,7 @@ std::vector<FaceTension> FemModel::tension_map(const Vec& q) const {
   return out;
 }
 
-Frame FemModel::frame(double t, const Vec& q, const Vec& v) {
+Frame FemModel::frame(double t, const Vec& q, const Vec& v) const {
   const int nv = mesh_.num_vertices(), nt = mesh_.num_triangles();
   Frame f;
   f.time = t;

@@ -29,9 +29,10 @@ class FemModel : public TermModel {
   // With an explicit mesh and material (calibration, tests).
   FemModel(const Scene& scene, FemMesh mesh, const FemMaterial& material);
 
+  std::unique_ptr<Model> clone() const override { return std::make_unique<FemModel>(*this); }
   std::string name() const override { return "fem"; }
   bool mass_depends_on_q() const override { return false; }
-  Frame frame(double t, const Vec& q, const Vec& v) override;
+  Frame frame(double t, const Vec& q, const Vec& v) const override;
   std::map<std::string, std::string> describe() const override;
 
   const FemMesh& mesh() const { return mesh_; }

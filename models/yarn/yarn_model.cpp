@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "models/common/wind.h"
@@ -31,210 +32,255 @@ const char* pattern_name(Pattern::Kind k) {
 
 }  // namespace
 
-// Rest position of node (i, j): upright x = (iL, 0, h − jL) (cloth in the xz
-// plane, wind along +y, docs/models.md §2.5); flat x = (iL, jL, h).
-static Vec3 rest_position(const Scene& s, int i, int j) {
-  const double L = s.spacing_m;
-  return s.pose == Scene::Pose::upright ? Vec3(i * L, 0.0, s.height_m - j * L) : Vec3(i * L, j * L, s.height_m);
-}
-
 YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
-  const int nu = grid_.nu(), nv = grid_.nv();
-  const double L = scene.spacing_m, R = scene.radius_m, area = std::numbers::pi * R * R;
   num_dofs_ = grid_.num_dofs();
   constants_ = grid_.constants();
+  set_rest_state();
+  set_yarn_stiffness();
+  build_segments();
+  const TermSwitches& on = scene.terms;
+  const ContactParams& c = scene.contact;
+  const bool gong_shear = on.shear && c.shear_model == ContactParams::ShearModel::gong;
+  const bool friction = on.friction && scene.sliding;
+  if (gong_shear || friction) normals_.emplace(grid_, warp_.ks, warp_.kb, weft_.ks, weft_.kb, scene.radius_m);
+  if (on.inertia) add_inertia();
+  if (on.stretch) add_stretch();
+  if (on.gravity) add_gravity();
+  if (on.bending) add_bending();
+  if (on.shear) add_shear();
+  if (on.parallel_contact && scene.sliding) add_parallel_contact();
+  if (friction) add_friction();
+  if (on.wind) add_wind();
+  if (on.handles) add_handles();
+  add_pins();
+  finalize();
+}
+
+// Rest state: upright x = (iL, 0, h − jL) (cloth in the xz plane, wind along
+// +y, docs/models.md §2.5), flat x = (iL, jL, h); u = iL, v = jL; at rest.
+void YarnModel::set_rest_state() {
+  const double L = scene_.spacing_m;
   q0_ = Vec::Zero(num_dofs_);
   v0_ = Vec::Zero(num_dofs_);
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
+  for (int j = 0; j < grid_.nv(); ++j)
+    for (int i = 0; i < grid_.nu(); ++i) {
       const NodeDofs& d = grid_.dofs(grid_.node(i, j));
-      q0_.segment<3>(d.x) = rest_position(scene, i, j);
+      q0_.segment<3>(d.x) = scene_.pose == Scene::Pose::upright ? Vec3(i * L, 0.0, scene_.height_m - j * L)
+                                                                : Vec3(i * L, j * L, scene_.height_m);
       if (is_dof(d.u)) q0_[d.u] = i * L;
       if (is_dof(d.v)) q0_[d.v] = j * L;
     }
+}
 
-  // Per-yarn stiffness: warp j, weft i (k_s = Y·πR², k_b = B·πR², docs/models.md §3.2, §3.3).
-  std::vector<double> warp_ks(nv), warp_kb(nv), warp_rho(nv), weft_ks(nu), weft_kb(nu), weft_rho(nu);
-  auto warp_name = [&](int j) { return scene.warp_yarn_types[j % scene.warp_yarn_types.size()]; };
-  auto weft_name = [&](int i) { return scene.weft_yarn_types[i % scene.weft_yarn_types.size()]; };
-  for (int j = 0; j < nv; ++j) {
-    const YarnType& y = scene.warp_type(j);
-    warp_ks[j] = y.stretch_modulus_Pa * area;
-    warp_kb[j] = y.bending_modulus_Pa * area;
-    warp_rho[j] = y.density_kg_per_m;
-  }
-  for (int i = 0; i < nu; ++i) {
-    const YarnType& y = scene.weft_type(i);
-    weft_ks[i] = y.stretch_modulus_Pa * area;
-    weft_kb[i] = y.bending_modulus_Pa * area;
-    weft_rho[i] = y.density_kg_per_m;
-  }
+// Per-yarn constants: warp j, weft i (k_s = Y·πR², k_b = B·πR², docs/models.md §3.2, §3.3).
+void YarnModel::set_yarn_stiffness() {
+  const double area = cross_section();
+  auto fill = [&](YarnConstants& yarns, int count, auto type_of) {
+    for (int k = 0; k < count; ++k) {
+      const YarnType& y = type_of(k);
+      yarns.ks.push_back(y.stretch_modulus_Pa * area);
+      yarns.kb.push_back(y.bending_modulus_Pa * area);
+      yarns.rho.push_back(y.density_kg_per_m);
+    }
+  };
+  fill(warp_, grid_.nv(), [&](int j) -> const YarnType& { return scene_.warp_type(j); });
+  fill(weft_, grid_.nu(), [&](int i) -> const YarnType& { return scene_.weft_type(i); });
+}
 
+void YarnModel::build_segments() {
+  const int nu = grid_.nu(), nv = grid_.nv();
+  auto name = [](const std::vector<std::string>& cycle, int k) { return cycle[k % cycle.size()]; };
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i + 1 < nu; ++i)
-      segments_.push_back({grid_.node(i, j), grid_.node(i + 1, j), true, warp_ks[j], warp_name(j)});
+      segments_.push_back(
+          {grid_.node(i, j), grid_.node(i + 1, j), true, warp_.ks[j], warp_.rho[j], name(scene_.warp_yarn_types, j)});
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j + 1 < nv; ++j)
-      segments_.push_back({grid_.node(i, j), grid_.node(i, j + 1), false, weft_ks[i], weft_name(i)});
-  auto rho_of = [&](const Segment& s) { return s.warp ? warp_rho[s.a / nu] : weft_rho[s.a % nu]; };
-  // Each element is tagged with the scene parameter it is proportional to (docs/models.md §9.1).
-  auto type_of = [&](const Segment& s) -> const YarnType& { return scene.yarn_types.at(s.type); };
+      segments_.push_back(
+          {grid_.node(i, j), grid_.node(i, j + 1), false, weft_.ks[i], weft_.rho[i], name(scene_.weft_yarn_types, i)});
+}
 
-  const TermSwitches& on = scene.terms;
-  const ContactParams& c = scene.contact;
-  if (on.inertia) {
-    auto t = std::make_unique<SegmentInertiaTerm>();
-    for (const Segment& s : segments_) {
-      t->add(segment_stencil(s), rho_of(s));
-      t->tag_last(yarn_type_key(s.type, kDensityField), type_of(s).density_kg_per_m);
-    }
-    terms_.push_back(std::move(t));
+// The builders below tag each element with the scene parameter it is
+// proportional to (docs/models.md §9.1).
+
+// Segment inertia, docs/models.md §3.1.
+void YarnModel::add_inertia() {
+  auto t = std::make_unique<SegmentInertiaTerm>();
+  for (const Segment& s : segments_) {
+    t->add(segment_stencil(s), s.rho);
+    t->tag_last(yarn_type_key(s.type, kDensityField), yarn_type(s.type).density_kg_per_m);
   }
-  if (on.stretch) {
-    auto t = std::make_unique<StretchTerm>();
-    for (const Segment& s : segments_) {
-      t->add(segment_stencil(s), s.ks);
-      t->tag_last(yarn_type_key(s.type, kStretchModulusField), type_of(s).stretch_modulus_Pa);
-    }
-    terms_.push_back(std::move(t));
+  terms_.push_back(std::move(t));
+}
+
+// Stretch, docs/models.md §3.2.
+void YarnModel::add_stretch() {
+  auto t = std::make_unique<StretchTerm>();
+  for (const Segment& s : segments_) {
+    t->add(segment_stencil(s), s.ks);
+    t->tag_last(yarn_type_key(s.type, kStretchModulusField), yarn_type(s.type).stretch_modulus_Pa);
   }
-  const Vec3 g(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1], scene.gravity_m_per_s2[2]);
-  if (on.gravity && g.norm() > 0) {
-    auto t = std::make_unique<GravityTerm>(g);
-    for (const Segment& s : segments_) {
-      t->add(segment_stencil(s), rho_of(s));
-      t->tag_last(yarn_type_key(s.type, kDensityField), type_of(s).density_kg_per_m);
-    }
-    terms_.push_back(std::move(t));
+  terms_.push_back(std::move(t));
+}
+
+// Gravity on the segment mass, docs/models.md §3.8.
+void YarnModel::add_gravity() {
+  const Vec3 g(scene_.gravity_m_per_s2[0], scene_.gravity_m_per_s2[1], scene_.gravity_m_per_s2[2]);
+  if (g.norm() == 0.0) return;
+  auto t = std::make_unique<GravityTerm>(g);
+  for (const Segment& s : segments_) {
+    t->add(segment_stencil(s), s.rho);
+    t->tag_last(yarn_type_key(s.type, kDensityField), yarn_type(s.type).density_kg_per_m);
   }
-  if (on.bending) {
-    auto t = std::make_unique<BendingTerm>();
-    auto add = [&](int n0, int n1, int n2, bool warp, double kb, const std::string& type) {
-      const NodeDofs &d0 = grid_.dofs(n0), &d1 = grid_.dofs(n1), &d2 = grid_.dofs(n2);
-      const int c1 = warp ? d1.u : d1.v, c2 = warp ? d2.u : d2.v;
-      t->add({d0.x, d0.x + 1, d0.x + 2, d1.x, d1.x + 1, d1.x + 2, d2.x, d2.x + 1, d2.x + 2, c1, c2}, kb);
-      t->tag_last(yarn_type_key(type, kBendingModulusField), scene.yarn_types.at(type).bending_modulus_Pa);
-    };
-    for (int j = 0; j < nv; ++j)
-      for (int i = 1; i + 1 < nu; ++i)
-        add(grid_.node(i, j), grid_.node(i + 1, j), grid_.node(i - 1, j), true, warp_kb[j], warp_name(j));
+  terms_.push_back(std::move(t));
+}
+
+// Bending over three consecutive crossings of a yarn, docs/models.md §3.3.
+void YarnModel::add_bending() {
+  const int nu = grid_.nu(), nv = grid_.nv();
+  auto t = std::make_unique<BendingTerm>();
+  auto add = [&](int n0, int n1, int n2, bool warp, double kb, const std::string& type) {
+    const NodeDofs &d0 = grid_.dofs(n0), &d1 = grid_.dofs(n1), &d2 = grid_.dofs(n2);
+    const int c1 = warp ? d1.u : d1.v, c2 = warp ? d2.u : d2.v;
+    t->add({d0.x, d0.x + 1, d0.x + 2, d1.x, d1.x + 1, d1.x + 2, d2.x, d2.x + 1, d2.x + 2, c1, c2}, kb);
+    t->tag_last(yarn_type_key(type, kBendingModulusField), yarn_type(type).bending_modulus_Pa);
+  };
+  auto name = [](const std::vector<std::string>& cycle, int k) { return cycle[k % cycle.size()]; };
+  for (int j = 0; j < nv; ++j)
+    for (int i = 1; i + 1 < nu; ++i)
+      add(grid_.node(i, j), grid_.node(i + 1, j), grid_.node(i - 1, j), true, warp_.kb[j],
+          name(scene_.warp_yarn_types, j));
+  for (int i = 0; i < nu; ++i)
+    for (int j = 1; j + 1 < nv; ++j)
+      add(grid_.node(i, j), grid_.node(i, j + 1), grid_.node(i, j - 1), false, weft_.kb[i],
+          name(scene_.weft_yarn_types, i));
+  terms_.push_back(std::move(t));
+}
+
+// Shear: four quadrants (warp ±, weft ±) at every node that has them,
+// Cirio's law or Gong's with lock (docs/models.md §3.4.4).
+void YarnModel::add_shear() {
+  const int nu = grid_.nu(), nv = grid_.nv();
+  const ContactParams& c = scene_.contact;
+  const double L = scene_.spacing_m, area = cross_section();
+  std::unique_ptr<CirioShearTerm> cirio;
+  std::unique_ptr<GongShearTerm> gong;
+  if (c.shear_model == ContactParams::ShearModel::gong)
+    gong = std::make_unique<GongShearTerm>(L, scene_.radius_m, c.lock_exponent, c.lock_sigma);
+  else cirio = std::make_unique<CirioShearTerm>();
+  for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i)
-      for (int j = 1; j + 1 < nv; ++j)
-        add(grid_.node(i, j), grid_.node(i, j + 1), grid_.node(i, j - 1), false, weft_kb[i], weft_name(i));
-    terms_.push_back(std::move(t));
-  }
-
-  const bool gong_shear = on.shear && c.shear_model == ContactParams::ShearModel::gong;
-  const bool friction = on.friction && scene.sliding;
-  if (gong_shear || friction) normals_ = std::make_unique<ContactNormals>(grid_, warp_ks, warp_kb, weft_ks, weft_kb, R);
-  const std::vector<double>* fn = normals_ ? &normals_->normal_force() : nullptr;
-
-  if (on.shear) {
-    // Four quadrants (warp ±, weft ±) at every node that has them (docs/models.md §3.4.4).
-    std::unique_ptr<CirioShearTerm> cirio;
-    std::unique_ptr<GongShearTerm> gong;
-    if (gong_shear) gong = std::make_unique<GongShearTerm>(fn, L, R, c.lock_exponent, c.lock_sigma);
-    else cirio = std::make_unique<CirioShearTerm>();
-    for (int j = 0; j < nv; ++j)
-      for (int i = 0; i < nu; ++i)
-        for (int di : {1, -1})
-          for (int dj : {1, -1}) {
-            const int i1 = i + di, j3 = j + dj;
-            if (i1 < 0 || i1 >= nu || j3 < 0 || j3 >= nv) continue;
-            const int n0 = grid_.node(i, j);
-            const int x0 = grid_.dofs(n0).x, x1 = grid_.dofs(grid_.node(i1, j)).x, x3 = grid_.dofs(grid_.node(i, j3)).x;
-            const std::array<int, 9> st{x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2};
-            if (gong) {
-              // Lock only where the warp and the weft interlace (docs/models.md §3.4.4).
-              const bool lock = grid_.sign(i, j) != grid_.sign(i1, j) && grid_.sign(i, j) != grid_.sign(i, j3);
-              gong->add(st, n0, c.shear_modulus_Pa * area, lock);
-              gong->tag_last(kShearModulusKey, c.shear_modulus_Pa);
-            } else {
-              cirio->add(st, c.shear_modulus_Pa * area * L);
-              cirio->tag_last(kShearModulusKey, c.shear_modulus_Pa);
-            }
+      for (int di : {1, -1})
+        for (int dj : {1, -1}) {
+          const int i1 = i + di, j3 = j + dj;
+          if (i1 < 0 || i1 >= nu || j3 < 0 || j3 >= nv) continue;
+          const int n0 = grid_.node(i, j);
+          const int x0 = grid_.dofs(n0).x, x1 = grid_.dofs(grid_.node(i1, j)).x, x3 = grid_.dofs(grid_.node(i, j3)).x;
+          const std::array<int, 9> st{x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2};
+          if (gong) {
+            // Lock only where the warp and the weft interlace (docs/models.md §3.4.4).
+            const bool lock = grid_.sign(i, j) != grid_.sign(i1, j) && grid_.sign(i, j) != grid_.sign(i, j3);
+            gong->add(st, n0, c.shear_modulus_Pa * area, lock);
+            gong->tag_last(kShearModulusKey, c.shear_modulus_Pa);
+          } else {
+            cirio->add(st, c.shear_modulus_Pa * area * L);
+            cirio->tag_last(kShearModulusKey, c.shear_modulus_Pa);
           }
-    if (gong) terms_.push_back(std::move(gong));
-    else terms_.push_back(std::move(cirio));
-  }
-
-  if (on.parallel_contact && scene.sliding) {
-    auto t = std::make_unique<ParallelContactTerm>();
-    for (const Segment& s : segments_) {
-      const NodeDofs &da = grid_.dofs(s.a), &db = grid_.dofs(s.b);
-      const int ca = s.warp ? da.u : da.v, cb = s.warp ? db.u : db.v;
-      if (!is_dof(ca) && !is_dof(cb)) continue;
-      const int sa = grid_.sign(s.a % nu, s.a / nu), sb = grid_.sign(s.b % nu, s.b / nu);
-      t->add({ca, cb}, c.parallel_stiffness_N_per_m2 * L, parallel_contact_distance(sa, sb, R));
-    }
-    terms_.push_back(std::move(t));
-  }
-
-  if (friction) {
-    auto add_all = [&](auto& term) {
-      for (int j = 1; j + 1 < nv; ++j)
-        for (int i = 1; i + 1 < nu; ++i) {
-          const int n = grid_.node(i, j);
-          const NodeDofs& d = grid_.dofs(n);
-          term->add(d.u, n, i * L);
-          term->add(d.v, n, j * L);
-          friction_node_.insert(friction_node_.end(), {n, n});
-          friction_axis_.insert(friction_axis_.end(), {0, 1});
         }
-    };
-    const double mu = c.friction_coefficient, kf = c.friction_stiffness_N_per_m, df = c.friction_damping_Ns_per_m;
-    std::unique_ptr<FrictionTerm> t;
-    if (c.friction_model == ContactParams::FrictionModel::gong)
-      t = std::make_unique<GongFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
-    else t = std::make_unique<CirioFrictionTerm>(fn, mu, kf, df, c.tanh_sharpness_per_m);
-    add_all(t);
-    friction_ = t.get();
-    terms_.push_back(std::move(t));
-  }
+  if (gong) terms_.push_back(std::move(gong));
+  else terms_.push_back(std::move(cirio));
+}
 
-  const Vec3 wind(scene.wind_velocity_m_per_s[0], scene.wind_velocity_m_per_s[1], scene.wind_velocity_m_per_s[2]);
-  if (on.wind && (scene.air_density_kg_per_m3 > 0 || scene.wind_drag_Ns_per_m3 > 0)) {
-    // Each grid cell split into two triangles along (i,j)–(i+1,j+1) (docs/models.md §3.9).
-    auto t = std::make_unique<WindTerm>(wind, scene.air_density_kg_per_m3, scene.wind_drag_Ns_per_m3);
-    auto tri = [&](int a, int b, int cc) {
-      const int xa = grid_.dofs(a).x, xb = grid_.dofs(b).x, xc = grid_.dofs(cc).x;
-      t->add({xa, xa + 1, xa + 2, xb, xb + 1, xb + 2, xc, xc + 1, xc + 2});
-    };
-    for (int j = 0; j + 1 < nv; ++j)
-      for (int i = 0; i + 1 < nu; ++i) {
-        const int n00 = grid_.node(i, j), n10 = grid_.node(i + 1, j), n11 = grid_.node(i + 1, j + 1),
-                  n01 = grid_.node(i, j + 1);
-        tri(n00, n10, n11);
-        tri(n00, n11, n01);
-      }
-    terms_.push_back(std::move(t));
+// Contact of parallel yarns on the sliding coordinates, docs/models.md §3.5.
+void YarnModel::add_parallel_contact() {
+  const int nu = grid_.nu();
+  const double k = scene_.contact.parallel_stiffness_N_per_m2 * scene_.spacing_m;
+  auto t = std::make_unique<ParallelContactTerm>();
+  for (const Segment& s : segments_) {
+    const NodeDofs &da = grid_.dofs(s.a), &db = grid_.dofs(s.b);
+    const int ca = s.warp ? da.u : da.v, cb = s.warp ? db.u : db.v;
+    if (!is_dof(ca) && !is_dof(cb)) continue;
+    const int sa = grid_.sign(s.a % nu, s.a / nu), sb = grid_.sign(s.b % nu, s.b / nu);
+    t->add({ca, cb}, k, parallel_contact_distance(sa, sb, scene_.radius_m));
   }
+  terms_.push_back(std::move(t));
+}
 
-  if (on.handles && !scene.handles.empty()) {
-    auto t = std::make_unique<HandleSpringTerm>();
-    for (const Handle& h : scene.handles) {
-      const int x = grid_.dofs(grid_.node(h.node.i, h.node.j)).x;
-      t->add({x, x + 1, x + 2}, q0_.segment<3>(x), h.stiffness_N_per_m);
+// Sliding friction on u and v of every inner crossing, Gong's or Cirio's law
+// (docs/models.md §3.7).
+void YarnModel::add_friction() {
+  const ContactParams& c = scene_.contact;
+  const double L = scene_.spacing_m, mu = c.friction_coefficient, kf = c.friction_stiffness_N_per_m,
+               df = c.friction_damping_Ns_per_m;
+  std::unique_ptr<FrictionTerm> t;
+  if (c.friction_model == ContactParams::FrictionModel::gong)
+    t = std::make_unique<GongFrictionTerm>(mu, kf, df, c.tanh_sharpness_per_m);
+  else t = std::make_unique<CirioFrictionTerm>(mu, kf, df, c.tanh_sharpness_per_m);
+  for (int j = 1; j + 1 < grid_.nv(); ++j)
+    for (int i = 1; i + 1 < grid_.nu(); ++i) {
+      const int n = grid_.node(i, j);
+      const NodeDofs& d = grid_.dofs(n);
+      t->add(d.u, n, i * L);
+      t->add(d.v, n, j * L);
+      friction_node_.insert(friction_node_.end(), {n, n});
+      friction_axis_.insert(friction_axis_.end(), {0, 1});
     }
-    terms_.push_back(std::move(t));
-  }
+  friction_term_ = static_cast<int>(terms_.size());
+  terms_.push_back(std::move(t));
+}
 
-  for (const NodeRef& p : scene.pins) {
+// Wind drag on the cloth surface: each grid cell split into two triangles along
+// (i,j)–(i+1,j+1) (docs/models.md §3.9).
+void YarnModel::add_wind() {
+  if (!(scene_.air_density_kg_per_m3 > 0 || scene_.wind_drag_Ns_per_m3 > 0)) return;
+  const Vec3 wind(scene_.wind_velocity_m_per_s[0], scene_.wind_velocity_m_per_s[1], scene_.wind_velocity_m_per_s[2]);
+  auto t = std::make_unique<WindTerm>(wind, scene_.air_density_kg_per_m3, scene_.wind_drag_Ns_per_m3);
+  auto tri = [&](int a, int b, int cc) {
+    const int xa = grid_.dofs(a).x, xb = grid_.dofs(b).x, xc = grid_.dofs(cc).x;
+    t->add({xa, xa + 1, xa + 2, xb, xb + 1, xb + 2, xc, xc + 1, xc + 2});
+  };
+  for (int j = 0; j + 1 < grid_.nv(); ++j)
+    for (int i = 0; i + 1 < grid_.nu(); ++i) {
+      const int n00 = grid_.node(i, j), n10 = grid_.node(i + 1, j), n11 = grid_.node(i + 1, j + 1),
+                n01 = grid_.node(i, j + 1);
+      tri(n00, n10, n11);
+      tri(n00, n11, n01);
+    }
+  terms_.push_back(std::move(t));
+}
+
+// Handles: a spring from the node to its rest position (docs/models.md §3.10).
+void YarnModel::add_handles() {
+  if (scene_.handles.empty()) return;
+  auto t = std::make_unique<HandleSpringTerm>();
+  for (const Handle& h : scene_.handles) {
+    const int x = grid_.dofs(grid_.node(h.node.i, h.node.j)).x;
+    t->add({x, x + 1, x + 2}, q0_.segment<3>(x), h.stiffness_N_per_m);
+  }
+  terms_.push_back(std::move(t));
+}
+
+// Pins hold every DoF of their node, sliding coordinates included.
+void YarnModel::add_pins() {
+  for (const NodeRef& p : scene_.pins) {
     const NodeDofs& d = grid_.dofs(grid_.node(p.i, p.j));
     for (int k = 0; k < 3; ++k) fixed_.push_back(d.x + k);
     if (is_dof(d.u)) fixed_.push_back(d.u);
     if (is_dof(d.v)) fixed_.push_back(d.v);
   }
-  finalize();
 }
+
+double YarnModel::cross_section() const { return std::numbers::pi * scene_.radius_m * scene_.radius_m; }
 
 std::array<int, 8> YarnModel::segment_stencil(const Segment& s) const {
   const NodeDofs &a = grid_.dofs(s.a), &b = grid_.dofs(s.b);
   return {a.x, a.x + 1, a.x + 2, b.x, b.x + 1, b.x + 2, s.warp ? a.u : a.v, s.warp ? b.u : b.v};
 }
 
-void YarnModel::update_auxiliary(double, const Vec& q, const Vec&) {
-  if (normals_) normals_->compute(q);
+void YarnModel::prepare_auxiliary(double, const Vec& q, const Vec&, EvalContext& ctx) {
+  if (!normals_) return;
+  normals_->compute(q);
+  ctx.normal_force = normals_->normal_force();
 }
 
 Vec3 YarnModel::position(const Vec& q, int i, int j) const { return q.segment<3>(grid_.dofs(grid_.node(i, j)).x); }
@@ -266,24 +312,25 @@ double YarnModel::coordinate(const Vec& q, int index) const {
   return is_dof(index) ? q[index] : constants_[constant_slot(index)];
 }
 
-Frame YarnModel::frame(double t, const Vec& q, const Vec& v) {
+Frame YarnModel::frame(double t, const Vec& q, const Vec& v) const {
   const int n = grid_.num_nodes(), nu = grid_.nu(), nv = grid_.nv();
   Frame f;
   f.time = t;
   f.points.resize(n, 3);
   DataArray vel{"velocity", 3, {}}, u{"u", 1, {}}, vv{"v", 1, {}}, fn{"F_n", 1, {}}, slide{"sliding", 2, {}};
-  if (normals_) normals_->compute(q);
+  std::optional<ContactNormals> normals = normals_;  // F_n at q, leaving the evaluation's own untouched
+  if (normals) normals->compute(q);
   for (int k = 0; k < n; ++k) {
     const NodeDofs& d = grid_.dofs(k);
     f.points.row(k) = q.segment<3>(d.x).transpose();
     for (int c = 0; c < 3; ++c) vel.values.push_back(v[d.x + c]);
     u.values.push_back(coordinate(q, d.u));
     vv.values.push_back(coordinate(q, d.v));
-    fn.values.push_back(normals_ ? normals_->normal_force()[k] : 0.0);
+    fn.values.push_back(normals ? normals->normal_force()[k] : 0.0);
   }
   slide.values.assign(2 * n, 0.0);
   std::vector<double> state;
-  if (friction_) state = friction_->sliding_state();
+  if (friction_term_ >= 0) state = static_cast<const FrictionTerm&>(*terms_[friction_term_]).sliding_state();
   for (size_t e = 0; e < state.size(); ++e) slide.values[2 * friction_node_[e] + friction_axis_[e]] = state[e];
 
   CellBlock lines{CellType::line, {}}, quads{CellType::quad, {}};

@@ -3,6 +3,7 @@
 // (along the weft). Built from a Scene; only the terms the scene turns on exist.
 #pragma once
 #include <memory>
+#include <optional>
 
 #include "models/core/term_model.h"
 #include "models/scene/scene.h"
@@ -11,14 +12,13 @@
 
 namespace wl {
 
-class FrictionTerm;
-
 class YarnModel : public TermModel {
  public:
   explicit YarnModel(const Scene& scene);
+  std::unique_ptr<Model> clone() const override { return std::make_unique<YarnModel>(*this); }
   std::string name() const override { return "yarn"; }
   bool mass_depends_on_q() const override { return scene_.sliding; }
-  Frame frame(double t, const Vec& q, const Vec& v) override;
+  Frame frame(double t, const Vec& q, const Vec& v) const override;
   double max_node_speed(const Vec& v) const override;
   // Sliding coordinates of neighbouring crossings that meet or cross (Δu ≤ 0 on
   // a segment, docs/models.md §2.2, §5.10), naming the yarn and the crossings.
@@ -31,22 +31,46 @@ class YarnModel : public TermModel {
   double coordinate(const Vec& q, int index) const;
 
  protected:
-  void update_auxiliary(double t, const Vec& q, const Vec& v) override;
+  // The contact normals and F_n at q (docs/models.md §3.6), handed to the terms in ctx.
+  void prepare_auxiliary(double t, const Vec& q, const Vec& v, EvalContext& ctx) override;
 
  private:
   struct Segment {
     int a, b;          // node ids
     bool warp;         // along u (warp) or v (weft)
     double ks;         // stretch stiffness of its yarn [N]
+    double rho;        // linear density of its yarn [kg/m]
     std::string type;  // its yarn type's name (scene yarn_types)
   };
+  struct YarnConstants {              // per warp j or weft i
+    std::vector<double> ks, kb, rho;  // k_s = Y·πR² [N], k_b = B·πR² [N·m²], ρ [kg/m]
+  };
+
+  // Construction, one step per idea; each add_* builds one term when the scene turns it on.
+  void set_rest_state();
+  void set_yarn_stiffness();
+  void build_segments();
+  void add_inertia();
+  void add_stretch();
+  void add_gravity();
+  void add_bending();
+  void add_shear();
+  void add_parallel_contact();
+  void add_friction();
+  void add_wind();
+  void add_handles();
+  void add_pins();
+
   std::array<int, 8> segment_stencil(const Segment& s) const;
+  double cross_section() const;  // πR² [m²]
+  const YarnType& yarn_type(const std::string& name) const { return scene_.yarn_types.at(name); }
 
   Scene scene_;
   WovenGrid grid_;
+  YarnConstants warp_, weft_;
   std::vector<Segment> segments_;
-  std::unique_ptr<ContactNormals> normals_;  // only when a term needs F_n
-  const FrictionTerm* friction_ = nullptr;
+  std::optional<ContactNormals> normals_;           // only when a term needs F_n
+  int friction_term_ = -1;                          // index of the friction term in terms_, −1 without friction
   std::vector<int> friction_node_, friction_axis_;  // per friction element: node id, 0 = u / 1 = v
 };
 

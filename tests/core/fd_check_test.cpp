@@ -16,6 +16,7 @@ class SpringTerm : public StencilTerm<6> {
  public:
   enum Bug { none, force_sign, stiffness_scale, no_damping_jacobian };
   explicit SpringTerm(Bug bug) : bug_(bug) { stencils_.push_back({0, 1, 2, 3, 4, 5}); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<SpringTerm>(*this); }
   std::string name() const override { return "test-spring"; }
   bool has_velocity_jacobian() const override { return bug_ != no_damping_jacobian; }
   double energy(int, const double* q) const override {
@@ -94,6 +95,7 @@ TEST(FdCheck, RelativeStepWorksAtMillimetreAndKilometreScales) {
 class NothingTerm : public StencilTerm<3> {
  public:
   NothingTerm() { stencils_.push_back({0, 1, 2}); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<NothingTerm>(*this); }
   std::string name() const override { return "nothing"; }
   double energy(int, const double*) const override { return 0.0; }
   void evaluate(int, const double*, const double*, const ElementOutput&) const override {}
@@ -112,6 +114,7 @@ TEST(FdCheck, ZeroAgainstZeroFails) {
 class WrongInertiaTerm : public StencilTerm<1> {
  public:
   WrongInertiaTerm() { stencils_.push_back({0}); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<WrongInertiaTerm>(*this); }
   std::string name() const override { return "wrong-inertia"; }
   bool conservative() const override { return false; }
   bool has_velocity_jacobian() const override { return true; }
@@ -146,6 +149,7 @@ TEST(FdCheck, MassBlockIsChecked) {
 class RightOnlyAtOneStateTerm : public StencilTerm<1> {
  public:
   RightOnlyAtOneStateTerm() { stencils_.push_back({0}); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<RightOnlyAtOneStateTerm>(*this); }
   std::string name() const override { return "right-at-one-state"; }
   double energy(int, const double* q) const override { return 0.25 * std::pow(q[0], 4); }
   void evaluate(int, const double* q, const double*, const ElementOutput& out) const override {

@@ -10,6 +10,7 @@ namespace {
 class LinearSpring1d : public StencilTerm<2> {
  public:
   LinearSpring1d(std::vector<std::array<int, 2>> s, double k, double l) : k_(k), l_(l) { stencils_ = std::move(s); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<LinearSpring1d>(*this); }
   std::string name() const override { return "linear-spring-1d"; }
   double energy(int, const double* q) const override {
     const double e = q[1] - q[0] - l_;
@@ -33,6 +34,7 @@ class LinearSpring1d : public StencilTerm<2> {
 class PointMass : public StencilTerm<1> {
  public:
   PointMass(std::vector<std::array<int, 1>> s, double m) : m_(m) { stencils_ = std::move(s); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<PointMass>(*this); }
   std::string name() const override { return "point-mass"; }
   bool provides_mass() const override { return true; }
   double energy(int, const double*) const override { return 0.0; }
@@ -48,6 +50,7 @@ class PointMass : public StencilTerm<1> {
 class ConstantForce : public StencilTerm<1> {
  public:
   ConstantForce(std::vector<std::array<int, 1>> s, double f) : f_(f) { stencils_ = std::move(s); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<ConstantForce>(*this); }
   std::string name() const override { return "constant-force"; }
   bool imex_explicit() const override { return true; }
   double energy(int, const double* q) const override { return -f_ * q[0]; }
@@ -61,6 +64,7 @@ class ConstantForce : public StencilTerm<1> {
 class VariableMass : public StencilTerm<1> {
  public:
   VariableMass(double m0, double alpha) : m0_(m0), a_(alpha) { stencils_.push_back({0}); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<VariableMass>(*this); }
   std::string name() const override { return "variable-mass"; }
   bool conservative() const override { return false; }
   bool has_velocity_jacobian() const override { return true; }
@@ -85,6 +89,7 @@ class Spring3d : public StencilTerm<6> {
       : rest_(std::move(rest)), k_(k), c_(c) {
     stencils_ = std::move(s);
   }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<Spring3d>(*this); }
   std::string name() const override { return "spring-3d"; }
   bool has_velocity_jacobian() const override { return c_ != 0.0; }
   double energy(int e, const double* q) const override {
@@ -170,7 +175,7 @@ SpringChain::SpringChain(int num_masses, double m, double k, double rest_length,
   finalize();
 }
 
-Frame SpringChain::frame(double t, const Vec& q, const Vec&) { return points_frame(t, q, 1); }
+Frame SpringChain::frame(double t, const Vec& q, const Vec&) const { return points_frame(t, q, 1); }
 
 // Free block: m ẍ = −K x + c, K = k·tridiag(−1, 2, −1) with K_NN = k,
 // c_i = m g, c_N = m g + k L (pinned end at 0). x(t) = x* + Φ(cos ωt a + sin ωt/ω b).
@@ -241,7 +246,7 @@ VariableMassOscillator::VariableMassOscillator(double m0, double alpha, double k
   finalize();
 }
 
-Frame VariableMassOscillator::frame(double t, const Vec& q, const Vec&) { return points_frame(t, q, 1); }
+Frame VariableMassOscillator::frame(double t, const Vec& q, const Vec&) const { return points_frame(t, q, 1); }
 
 double VariableMassOscillator::total_energy(const Vec& q, const Vec& v) const {
   return 0.5 * m0_ * (1.0 + alpha_ * q[0] * q[0]) * v[0] * v[0] + 0.5 * k_ * q[0] * q[0];
@@ -286,6 +291,6 @@ SpringNet::SpringNet(int rows, int cols, double spacing, double mass_per_node, d
   finalize();
 }
 
-Frame SpringNet::frame(double t, const Vec& q, const Vec&) { return points_frame(t, q, 3); }
+Frame SpringNet::frame(double t, const Vec& q, const Vec&) const { return points_frame(t, q, 3); }
 
 }  // namespace wl::test

@@ -19,9 +19,10 @@ namespace wl::test {
 class SpringChain : public TermModel {
  public:
   SpringChain(int num_masses, double m, double k, double rest_length, double g);
+  std::unique_ptr<Model> clone() const override { return std::make_unique<SpringChain>(*this); }
   std::string name() const override { return "spring-chain"; }
   bool mass_depends_on_q() const override { return false; }
-  Frame frame(double t, const Vec& q, const Vec& v) override;
+  Frame frame(double t, const Vec& q, const Vec& v) const override;
   std::map<std::string, std::string> describe() const override { return {}; }
   void set_initial(const Vec& q0, const Vec& v0) {
     q0_ = q0;
@@ -44,9 +45,10 @@ class SpringChain : public TermModel {
 class VariableMassOscillator : public TermModel {
  public:
   VariableMassOscillator(double m0, double alpha, double k, double q0, double v0);
+  std::unique_ptr<Model> clone() const override { return std::make_unique<VariableMassOscillator>(*this); }
   std::string name() const override { return "variable-mass-oscillator"; }
   bool mass_depends_on_q() const override { return true; }
-  Frame frame(double t, const Vec& q, const Vec& v) override;
+  Frame frame(double t, const Vec& q, const Vec& v) const override;
   std::map<std::string, std::string> describe() const override { return {}; }
   double total_energy(const Vec& q, const Vec& v) const;
 
@@ -57,9 +59,10 @@ class VariableMassOscillator : public TermModel {
 class SpringNet : public TermModel {
  public:
   SpringNet(int rows, int cols, double spacing, double mass_per_node, double k, double damping);
+  std::unique_ptr<Model> clone() const override { return std::make_unique<SpringNet>(*this); }
   std::string name() const override { return "spring-net"; }
   bool mass_depends_on_q() const override { return false; }
-  Frame frame(double t, const Vec& q, const Vec& v) override;
+  Frame frame(double t, const Vec& q, const Vec& v) const override;
   std::map<std::string, std::string> describe() const override { return {}; }
 };
 

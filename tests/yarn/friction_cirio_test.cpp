@@ -18,22 +18,25 @@ double force_of(const Term& t, int e, double u, double udot) {
   return f;
 }
 
-void accept(Term& t, const Vec& q, const Vec& v, double h = 1e-3) {
-  EvalContext ctx{0.0, &q, &v, nullptr};
+// As the model does: inputs frozen at the accepted state, the step accepted,
+// the inputs frozen again for the next step.
+void accept(Term& t, const std::vector<double>& Fn, const Vec& q, const Vec& v, double h = 1e-3) {
+  EvalContext ctx{0.0, &q, &v, nullptr, Fn};
+  t.prepare(ctx);
   t.accept_step(ctx, h);
   t.prepare(ctx);
 }
 
 TEST(CirioFrictionTerm, DerivativesMatchFiniteDifferencesInBothModes) {
   std::vector<double> Fn{1.0};
-  CirioFrictionTerm t(&Fn, 0.5, 1000, 20, 10);
+  CirioFrictionTerm t(0.5, 1000, 20, 10);
   t.add(0, 0, 0.0);  // stays stuck: k_f|δ| = 0.1 < 0.5
   t.add(1, 0, 0.0);  // slips: k_f|δ| = 2 > 0.5
   t.add(2, 0, 0.0);  // slips the other way
   Vec q(3), v(3);
   q << 1e-4, 2e-3, -2e-3;
   v << 0.1, 0.2, -0.2;
-  accept(t, q, v);
+  accept(t, Fn, q, v);
   ASSERT_EQ(t.slip_direction(0), 0);
   ASSERT_EQ(t.slip_direction(1), 1);
   ASSERT_EQ(t.slip_direction(2), -1);
@@ -48,12 +51,12 @@ TEST(CirioFrictionTerm, DerivativesMatchFiniteDifferencesInBothModes) {
 
 TEST(CirioFrictionTerm, StickIsASpringAndKeepsItsAnchor) {
   std::vector<double> Fn{2.0};
-  CirioFrictionTerm t(&Fn, 0.5, 1000, 20, 10);
+  CirioFrictionTerm t(0.5, 1000, 20, 10);
   t.add(0, 0, 0.3);
   Vec q(1), v(1);
   q << 0.3 + 9e-4;  // k_f|δ| = 0.9 < μF_n = 1
   v << 0.4;
-  accept(t, q, v);
+  accept(t, Fn, q, v);
   EXPECT_EQ(t.anchor(0), 0.3);
   EXPECT_EQ(t.sliding_state()[0], 0.0);
   EXPECT_NEAR(force_of(t, 0, 0.3 + 5e-4, 0.1), -1000 * 5e-4 - 20 * 0.1, 1e-12);
@@ -62,12 +65,12 @@ TEST(CirioFrictionTerm, StickIsASpringAndKeepsItsAnchor) {
 TEST(CirioFrictionTerm, SlipMovesAnchorToTheFrictionLimit) {
   std::vector<double> Fn{2.0};
   const double mu = 0.5, kf = 1000, df = 20;
-  CirioFrictionTerm t(&Fn, mu, kf, df, 10);
+  CirioFrictionTerm t(mu, kf, df, 10);
   t.add(0, 0, 0.3);
   Vec q(1), v(1);
   q << 0.3 - 3e-3;  // k_f|δ| = 3 > μF_n = 1, pulled towards −u
   v << -0.2;
-  accept(t, q, v);
+  accept(t, Fn, q, v);
   EXPECT_EQ(t.sliding_state()[0], 1.0);
   EXPECT_EQ(t.slip_direction(0), -1);
   EXPECT_NEAR(kf * std::abs(q[0] - t.anchor(0)), mu * Fn[0], 1e-12);
@@ -79,14 +82,22 @@ TEST(CirioFrictionTerm, SlipMovesAnchorToTheFrictionLimit) {
 
   // Keeps slipping while it moves on; sticks again when the motion reverses.
   const double anchor = t.anchor(0);
+  // A clone carries the history (anchor, slip mode) and the frozen F_n, and
+  // moves on alone (docs/design.md §3.4).
+  auto copy = t.clone();
+  const auto& c = static_cast<const CirioFrictionTerm&>(*copy);
+  EXPECT_EQ(c.anchor(0), anchor);
+  EXPECT_EQ(c.slip_direction(0), -1);
+  EXPECT_EQ(force_of(c, 0, q[0] - 1e-3, v[0]), force_of(t, 0, q[0] - 1e-3, v[0]));
   q[0] -= 1e-3;
-  accept(t, q, v);
+  accept(t, Fn, q, v);
+  EXPECT_EQ(c.anchor(0), anchor);
   EXPECT_EQ(t.slip_direction(0), -1);
   EXPECT_NEAR(t.anchor(0), anchor - 1e-3, 1e-15);
   q[0] += 2e-4;
   v[0] = 0.2;
   const double before = t.anchor(0);
-  accept(t, q, v);
+  accept(t, Fn, q, v);
   EXPECT_EQ(t.slip_direction(0), 0);
   EXPECT_EQ(t.anchor(0), before);
 }
@@ -95,7 +106,7 @@ TEST(CirioFrictionTerm, SlipMovesAnchorToTheFrictionLimit) {
 // term's force and Jacobians (Newton on the step velocity).
 struct PulledCrossing {
   double m = 1e-3, h = 1e-3, u = 0.0, v = 0.0;
-  void step(CirioFrictionTerm& t, double F_ext) {
+  void step(CirioFrictionTerm& t, const std::vector<double>& Fn, double F_ext) {
     Vec q(1), vv(1);
     double v1 = v;
     for (int it = 0; it < 5; ++it) {
@@ -109,7 +120,7 @@ struct PulledCrossing {
     u += h * v1;
     q << u;
     vv << v;
-    accept(t, q, vv, h);
+    accept(t, Fn, q, vv, h);
   }
 };
 
@@ -117,19 +128,19 @@ TEST(CirioFrictionTerm, PulledCrossingSticksBelowAndSlidesAboveTheLimit) {
   std::vector<double> Fn{1.0};
   const double mu = 0.5, kf = 1000, df = 1;
   {
-    CirioFrictionTerm t(&Fn, mu, kf, df, 10);
+    CirioFrictionTerm t(mu, kf, df, 10);
     t.add(0, 0, 0.0);
     PulledCrossing c;
-    for (int i = 0; i < 2000; ++i) c.step(t, 0.3);
+    for (int i = 0; i < 2000; ++i) c.step(t, Fn, 0.3);
     EXPECT_NEAR(c.u, 0.3 / kf, 1e-9);  // a spring at rest
     EXPECT_EQ(t.anchor(0), 0.0);
     EXPECT_EQ(t.sliding_state()[0], 0.0);
   }
   {
-    CirioFrictionTerm t(&Fn, mu, kf, df, 10);
+    CirioFrictionTerm t(mu, kf, df, 10);
     t.add(0, 0, 0.0);
     PulledCrossing c;
-    for (int i = 0; i < 1000; ++i) c.step(t, 0.8);
+    for (int i = 0; i < 1000; ++i) c.step(t, Fn, 0.8);
     EXPECT_NEAR(c.v, (0.8 - mu * Fn[0]) / df, 1e-6);  // kinetic friction + damping balance the pull
     EXPECT_EQ(t.sliding_state()[0], 1.0);
     EXPECT_NEAR(kf * (c.u - t.anchor(0)), mu * Fn[0], 1e-9);
@@ -138,18 +149,19 @@ TEST(CirioFrictionTerm, PulledCrossingSticksBelowAndSlidesAboveTheLimit) {
 
 TEST(CirioFrictionTerm, ReadsNormalForceInPrepareAndRejectsBadInput) {
   std::vector<double> Fn{0.0, 3.0};
-  CirioFrictionTerm t(&Fn, 0.5, 1000, 1, 10);
+  CirioFrictionTerm t(0.5, 1000, 1, 10);
   t.add(0, 1, 0.0);
   Vec q = Vec::Zero(1), v = Vec::Zero(1);
-  EvalContext ctx{0.0, &q, &v, &q};
+  EvalContext ctx{0.0, &q, &v, &q, Fn};
   t.prepare(ctx);
   EXPECT_EQ(t.contact_force(0), 3.0);
   EXPECT_FALSE(t.conservative());
   EXPECT_TRUE(t.has_velocity_jacobian());
   EXPECT_EQ(t.stage(), 1);
   EXPECT_EQ(t.name(), "friction");
-  EXPECT_THROW(CirioFrictionTerm(&Fn, 0.5, 0.0, 1, 10), std::invalid_argument);
-  EXPECT_THROW(t.add(0, 2, 0.0), std::invalid_argument);
+  EXPECT_THROW(CirioFrictionTerm(0.5, 0.0, 1, 10), std::invalid_argument);
+  t.add(0, 2, 0.0);  // node 2 of a two-node table
+  EXPECT_THROW(t.prepare(ctx), std::out_of_range);
 }
 
 }  // namespace

@@ -19,9 +19,9 @@ double force_of(const Term& t, int e, double u, double udot) {
   return f;
 }
 
-// Freezes F_u (the stage-0 force per DoF) and F_n as the model would.
-void prepare(Term& t, const Vec& Fu, const Vec& q, const Vec& v) {
-  EvalContext ctx{0.0, &q, &v, &Fu};
+// Freezes F_u (the stage-0 force per DoF) and F_n (per node) as the model would.
+void prepare(Term& t, const Vec& Fu, const std::vector<double>& Fn, const Vec& q, const Vec& v) {
+  EvalContext ctx{0.0, &q, &v, &Fu, Fn};
   t.prepare(ctx);
 }
 
@@ -47,11 +47,11 @@ TEST(GongFrictionTerm, DerivativesMatchFiniteDifferencesInEveryRegime) {
   // μF_n = 0.5; F_u from far below to far above breakaway, both signs.
   std::vector<double> Fn{1.0};
   const std::vector<double> pulls{0.0, 0.05, 0.45, 0.5, 0.55, 2.0, -2.0};
-  GongFrictionTerm t(&Fn, 0.5, 1000, 1000, 10);
+  GongFrictionTerm t(0.5, 1000, 1000, 10);
   for (size_t i = 0; i < pulls.size(); ++i) t.add(static_cast<int>(i), 0, 0.1 * i);
   Vec Fu = Eigen::Map<const Vec>(pulls.data(), pulls.size());
   Vec q = Vec::Zero(pulls.size()), v = Vec::Zero(pulls.size());
-  prepare(t, Fu, q, v);
+  prepare(t, Fu, Fn, q, v);
   for (int e = 0; e < t.num_elements(); ++e) {
     std::vector<test::LocalState> states;
     for (double d : {-0.3, -0.02, 0.0, 0.01, 0.2}) states.push_back({{0.1 * e + d}, {0.3 - d}});
@@ -63,11 +63,11 @@ TEST(GongFrictionTerm, DerivativesMatchFiniteDifferencesInEveryRegime) {
 TEST(GongFrictionTerm, RegimesOfTheLaw) {
   const double mu = 0.5, kf = 1000, df = 200, p = 1e4;
   std::vector<double> Fn{2.0};  // μF_n = 1 N
-  GongFrictionTerm t(&Fn, mu, kf, df, p);
+  GongFrictionTerm t(mu, kf, df, p);
   for (int i = 0; i < 5; ++i) t.add(i, 0, 0.0);
   Vec Fu(5);
   Fu << 0.0, 0.1, 1.0, 3.0, -3.0;  // rest, stick, breakaway, kinetic, kinetic (negative pull)
-  prepare(t, Fu, Vec::Zero(5), Vec::Zero(5));
+  prepare(t, Fu, Fn, Vec::Zero(5), Vec::Zero(5));
   const double ud = 0.02;
 
   EXPECT_NEAR(force_of(t, 0, 0.0, 0.0), 0.0, 1e-15);  // F_u = 0, δu = 0: no force
@@ -91,14 +91,14 @@ TEST(GongFrictionTerm, RegimesOfTheLaw) {
 
 TEST(GongFrictionTerm, AnchorMovesOnlyWhenSliding) {
   std::vector<double> Fn{1.0, 1.0};
-  GongFrictionTerm t(&Fn, 0.5, 1000, 1000, 10);
+  GongFrictionTerm t(0.5, 1000, 1000, 10);
   t.add(0, 0, 0.25);  // stick: |F_u| = 0.2 < μF_n = 0.5
   t.add(1, 1, 0.75);  // slide: |F_u| = 0.9 > μF_n
   Vec Fu(2), q(2), v(2);
   Fu << 0.2, -0.9;
   q << 0.26, 0.74;
   v << 0.3, -0.4;
-  prepare(t, Fu, q, v);
+  prepare(t, Fu, Fn, q, v);
   const double h = 1e-3;
   EvalContext ctx{0.0, &q, &v, nullptr};  // F_u from the last prepare
   t.accept_step(ctx, h);
@@ -114,11 +114,11 @@ TEST(GongFrictionTerm, AnchorMovesOnlyWhenSliding) {
 
 TEST(GongFrictionTerm, ReadsFrozenInputsInPrepare) {
   std::vector<double> Fn{0.0, 4.0};
-  GongFrictionTerm t(&Fn, 0.5, 1000, 10, 10);
+  GongFrictionTerm t(0.5, 1000, 10, 10);
   t.add(1, 1, 0.0);
   Vec Fu(2);
   Fu << 9.0, -0.3;
-  prepare(t, Fu, Vec::Zero(2), Vec::Zero(2));
+  prepare(t, Fu, Fn, Vec::Zero(2), Vec::Zero(2));
   EXPECT_EQ(t.tangential_force(0), -0.3);
   EXPECT_EQ(t.contact_force(0), 4.0);
   EXPECT_FALSE(t.conservative());
@@ -129,10 +129,11 @@ TEST(GongFrictionTerm, ReadsFrozenInputsInPrepare) {
 
 TEST(GongFrictionTerm, RejectsBadParameters) {
   std::vector<double> Fn{0.0};
-  EXPECT_THROW(GongFrictionTerm(&Fn, -0.1, 1000, 1000, 10), std::invalid_argument);
-  EXPECT_THROW(GongFrictionTerm(&Fn, 0.5, 1000, 1000, 0), std::invalid_argument);
-  GongFrictionTerm t(&Fn, 0.5, 1000, 1000, 10);
-  EXPECT_THROW(t.add(0, 3, 0.0), std::invalid_argument);
+  EXPECT_THROW(GongFrictionTerm(-0.1, 1000, 1000, 10), std::invalid_argument);
+  EXPECT_THROW(GongFrictionTerm(0.5, 1000, 1000, 0), std::invalid_argument);
+  GongFrictionTerm t(0.5, 1000, 1000, 10);
+  t.add(0, 3, 0.0);  // node 3 of a one-node table
+  EXPECT_THROW(prepare(t, Vec::Zero(1), Fn, Vec::Zero(1), Vec::Zero(1)), std::out_of_range);
 }
 
 }  // namespace

@@ -95,8 +95,9 @@ TEST(YarnTermParameters, StretchBendingGravityInertiaShearMatchFiniteDifferences
         [&](GongShearTerm& t, double p) {
           t.add({0, 1, 2, 3, 4, 5, 6, 7, 8}, 0, p * area, true);
           t.tag_last(kShearModulusKey, p);
+          t.prepare(EvalContext{0.0, nullptr, nullptr, nullptr, Fn});
         },
-        &Fn, 1e-3, 0.3e-3, 3.0, 0.6);
+        1e-3, 0.3e-3, 3.0, 0.6);
     auto r = test::check_parameter_derivative(make, 1000.0, 0, 0, crossings, {1e-7, 1e-5, 1e-16});
     EXPECT_TRUE(r.ok) << r.detail;
   }
@@ -108,21 +109,21 @@ TEST(YarnTermParameters, FrictionCoefficientMatchesFiniteDifferences) {
   static const std::vector<double> Fn{1.0};
   for (double pull : {0.05, 0.5, 2.0, -2.0}) {
     auto make = [&](double mu) {
-      auto t = std::make_unique<GongFrictionTerm>(&Fn, mu, 1000, 1000, 10);
+      auto t = std::make_unique<GongFrictionTerm>(mu, 1000, 1000, 10);
       t->add(0, 0, 0.0);
       const Vec Fu = Vec::Constant(1, pull), q = Vec::Zero(1), v = Vec::Zero(1);
-      t->prepare(EvalContext{0.0, &q, &v, &Fu});
+      t->prepare(EvalContext{0.0, &q, &v, &Fu, Fn});
       return std::unique_ptr<Term>(std::move(t));
     };
     auto r = test::check_parameter_derivative(make, 0.5, 0, 0, {{{-0.02}, {0.1}}, {{0.01}, {0.0}}, {{0.2}, {-0.3}}});
     EXPECT_TRUE(r.ok) << "F_u = " << pull << "\n" << r.detail;
   }
   auto make = [&](double mu) {
-    auto t = std::make_unique<CirioFrictionTerm>(&Fn, mu, 1000, 1000, 10);
+    auto t = std::make_unique<CirioFrictionTerm>(mu, 1000, 1000, 10);
     t->add(0, 0, 0.0);
     const Vec Fu = Vec::Zero(1), q = Vec::Constant(1, 0.01), v = Vec::Zero(1);
-    t->prepare(EvalContext{0.0, &q, &v, &Fu});
-    t->accept_step(EvalContext{0.0, &q, &v, &Fu}, 1e-3);  // k_f·0.01 = 10 N > μF_n: slipping
+    t->prepare(EvalContext{0.0, &q, &v, &Fu, Fn});
+    t->accept_step(EvalContext{0.0, &q, &v, &Fu, Fn}, 1e-3);  // k_f·0.01 = 10 N > μF_n: slipping
     return std::unique_ptr<Term>(std::move(t));
   };
   auto r = test::check_parameter_derivative(make, 0.5, 0, 0, {{{0.012}, {0.1}}});

@@ -212,6 +212,7 @@ class NodeDragTerm : public StencilTerm<3> {
  public:
   explicit NodeDragTerm(double c) : c_(c) {}
   void add(const std::array<int, 3>& s) { stencils_.push_back(s); }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<NodeDragTerm>(*this); }
   std::string name() const override { return "drag"; }
   bool conservative() const override { return false; }
   bool has_velocity_jacobian() const override { return true; }
@@ -269,9 +270,10 @@ class HangingYarn : public TermModel {
     fixed_ = {0, 1, 2, 3 * n - 3, 3 * n - 2, 3 * n - 1};
     finalize();
   }
+  std::unique_ptr<Model> clone() const override { return std::make_unique<HangingYarn>(*this); }
   std::string name() const override { return "hanging-yarn"; }
   bool mass_depends_on_q() const override { return false; }
-  Frame frame(double, const Vec&, const Vec&) override { return {}; }
+  Frame frame(double, const Vec&, const Vec&) const override { return {}; }
   std::map<std::string, std::string> describe() const override { return {}; }
 };
 

@@ -19,6 +19,7 @@ class BorderStretchTerm : public StencilTerm<6> {
   BorderStretchTerm(double k_warp_N_per_m, double k_weft_N_per_m, double width_m)
       : k_{k_warp_N_per_m, k_weft_N_per_m}, width_(width_m) {}
   std::string name() const override { return "fem-border-stretch"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<BorderStretchTerm>(*this); }
   // stencil: x of the edge's two vertices; along_u: the edge runs along u (warp stiffness).
   void add(const std::array<int, 6>& stencil, double rest_length_m, bool along_u);
   double energy(int e, const double* q) const override;

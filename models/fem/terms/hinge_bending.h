@@ -35,6 +35,7 @@ class HingeBendingTerm : public StencilTerm<12> {
  public:
   HingeBendingTerm(double k_warp_N_m, double k_weft_N_m) : k_warp_(k_warp_N_m), k_weft_(k_weft_N_m) {}
   std::string name() const override { return "fem-bending"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<HingeBendingTerm>(*this); }
   // edge_uv = rest UV of x1 − rest UV of x0; area_sum = Ā₁ + Ā₂ (rest).
   void add(const std::array<int, 12>& stencil, const Vec2& edge_uv, double area_sum, double theta0 = 0.0);
   double energy(int e, const double* q) const override;

@@ -23,6 +23,7 @@ class InPlaneShearTerm : public StencilTerm<9> {
   // lock_exponent m > 0, or ≤ 0 for no locking.
   InPlaneShearTerm(double k_sh_N_per_m, double lock_angle_rad = 0.0, double lock_exponent = 0.0);
   std::string name() const override { return "fem-shear"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<InPlaneShearTerm>(*this); }
   void add(const std::array<int, 9>& stencil, const TriangleRest& rest);
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;

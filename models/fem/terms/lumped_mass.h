@@ -11,6 +11,7 @@ namespace wl {
 class LumpedMassTerm : public ProportionalParameterTerm<9> {
  public:
   std::string name() const override { return "fem-mass"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<LumpedMassTerm>(*this); }
   bool provides_mass() const override { return true; }
   // triangle_mass_kg = ρ_A·A; each vertex receives a third.
   void add(const std::array<int, 9>& stencil, double triangle_mass_kg);

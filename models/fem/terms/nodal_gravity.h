@@ -13,6 +13,7 @@ class NodalGravityTerm : public ProportionalParameterTerm<3> {
  public:
   explicit NodalGravityTerm(const Vec3& g_m_per_s2) : g_(g_m_per_s2) {}
   std::string name() const override { return "fem-gravity"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<NodalGravityTerm>(*this); }
   bool imex_explicit() const override { return true; }  // non-stiff external load
   void add(const std::array<int, 3>& stencil, double mass_kg);
   double energy(int e, const double* q) const override;

@@ -20,6 +20,7 @@ class WarpWeftStretchTerm : public StencilTerm<9> {
  public:
   WarpWeftStretchTerm(double k_u_N_per_m, double k_v_N_per_m) : k_u_(k_u_N_per_m), k_v_(k_v_N_per_m) {}
   std::string name() const override { return "fem-stretch"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<WarpWeftStretchTerm>(*this); }
   // stencil: x of the triangle's vertices (3 DoFs each), CCW in UV.
   void add(const std::array<int, 9>& stencil, const TriangleRest& rest);
   double energy(int e, const double* q) const override;

@@ -30,6 +30,7 @@ class BendingTerm : public ProportionalParameterTerm<11> {
   double stiffness(int e) const { return kb_[e]; }
 
   std::string name() const override { return "bending"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<BendingTerm>(*this); }
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 

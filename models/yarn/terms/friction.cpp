@@ -1,13 +1,14 @@
 #include "models/yarn/terms/friction.h"
 
+#include "models/yarn/terms/frozen_normal_force.h"
+
 #include <sstream>
 #include <stdexcept>
 
 namespace wl {
 
-FrictionTerm::FrictionTerm(const char* who, const std::vector<double>* normal_force, double mu, double kf, double df,
-                           double p, bool kf_positive)
-    : normal_force_(normal_force), mu_(mu), kf_(kf), df_(df), p_(p) {
+FrictionTerm::FrictionTerm(const char* who, double mu, double kf, double df, double p, bool kf_positive)
+    : who_(who), mu_(mu), kf_(kf), df_(df), p_(p) {
   std::ostringstream bad;
   if (!(mu >= 0.0)) bad << "mu = " << mu << " (expected >= 0)";
   else if (kf_positive ? !(kf > 0.0) : !(kf >= 0.0))
@@ -18,11 +19,6 @@ FrictionTerm::FrictionTerm(const char* who, const std::vector<double>* normal_fo
 }
 
 void FrictionTerm::add(int dof, int node, double anchor0) {
-  if (normal_force_ && (node < 0 || node >= static_cast<int>(normal_force_->size()))) {
-    std::ostringstream msg;
-    msg << "friction: node " << node << " outside the normal-force table of size " << normal_force_->size();
-    throw std::invalid_argument(msg.str());
-  }
   stencils_.push_back({dof});
   node_.push_back(node);
   anchor_.push_back(anchor0);
@@ -34,8 +30,8 @@ void FrictionTerm::prepare(const EvalContext& ctx) {
   for (int e = 0; e < num_elements(); ++e) {
     const int dof = stencils_[e][0];
     Fu_[e] = ctx.force_so_far && is_dof(dof) ? (*ctx.force_so_far)[dof] : 0.0;
-    Fn_[e] = normal_force_at(e);
   }
+  freeze_normal_force(ctx, node_, Fn_, who_);
 }
 
 }  // namespace wl

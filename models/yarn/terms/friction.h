@@ -14,8 +14,8 @@ namespace wl {
 
 class FrictionTerm : public StencilTerm<1> {
  public:
-  // dof: the sliding coordinate (u or v) of the crossing; node: its index into
-  // the normal-force table; anchor0: the rest value of the coordinate.
+  // dof: the sliding coordinate (u or v) of the crossing; node: its id in the
+  // normal-force table (EvalContext::normal_force); anchor0: the rest value of the coordinate.
   void add(int dof, int node, double anchor0);
 
   std::string name() const override { return "friction"; }
@@ -34,14 +34,11 @@ class FrictionTerm : public StencilTerm<1> {
   std::vector<std::string> parameter_keys() const override { return {kFrictionCoefficientKey}; }
 
  protected:
-  // normal_force: per-node F_n [N] owned by the model (null: F_n = 0); mu
-  // friction coefficient; kf spring [N/m] (> 0 when `kf_positive`); df damping
+  // mu friction coefficient; kf spring [N/m] (> 0 when `kf_positive`); df damping
   // [N·s/m]; p tanh sharpness (the papers give none; docs/models.md §5.1).
-  FrictionTerm(const char* who, const std::vector<double>* normal_force, double mu, double kf, double df, double p,
-               bool kf_positive);
-  double normal_force_at(int e) const { return normal_force_ ? (*normal_force_)[node_[e]] : 0.0; }
+  FrictionTerm(const char* who, double mu, double kf, double df, double p, bool kf_positive);
 
-  const std::vector<double>* normal_force_;
+  const char* who_;
   double mu_, kf_, df_, p_;
   std::vector<int> node_;
   std::vector<double> anchor_, Fu_, Fn_;

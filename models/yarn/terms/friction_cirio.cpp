@@ -14,7 +14,7 @@ void CirioFrictionTerm::accept_step(const EvalContext& ctx, double) {
     const int dof = stencils_[e][0];
     if (!is_dof(dof) || !ctx.q) continue;
     const double u = (*ctx.q)[dof];
-    const double limit = mu_ * normal_force_at(e);
+    const double limit = mu_ * Fn_[e];
     const double delta = u - anchor_[e];
     if (kf_ * std::abs(delta) > limit) {
       mode_[e] = delta > 0.0 ? 1 : -1;

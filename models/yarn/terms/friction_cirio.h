@@ -31,8 +31,9 @@ class CirioFrictionTerm : public FrictionTerm {
  public:
   // Same parameters as GongFrictionTerm; p (tanh sharpness) is validated but
   // unused: the stick/slip switch here is discrete, between steps.
-  CirioFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df, double p)
-      : FrictionTerm("CirioFrictionTerm", normal_force, mu, kf, df, p, true) {}
+  CirioFrictionTerm(double mu, double kf, double df, double p)
+      : FrictionTerm("CirioFrictionTerm", mu, kf, df, p, true) {}
+  std::unique_ptr<Term> clone() const override { return std::make_unique<CirioFrictionTerm>(*this); }
 
   void accept_step(const EvalContext& ctx, double h) override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;

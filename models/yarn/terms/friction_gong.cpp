@@ -41,7 +41,7 @@ void GongFrictionTerm::accept_step(const EvalContext& ctx, double h) {
     const int dof = stencils_[e][0];
     if (!is_dof(dof) || !ctx.v) continue;
     const double Fu = ctx.force_so_far ? (*ctx.force_so_far)[dof] : Fu_[e];
-    const double Fn = normal_force_at(e);
+    const double Fn = Fn_[e];
     anchor_[e] += slide_indicator(Fu, Fn) * (*ctx.v)[dof] * h;
   }
 }

@@ -35,8 +35,9 @@ class GongFrictionTerm : public FrictionTerm {
  public:
   static constexpr double kSlideSharpness = 1e4;  // 1/N, slide indicator (docs/models.md §5.1)
 
-  GongFrictionTerm(const std::vector<double>* normal_force, double mu, double kf, double df, double p)
-      : FrictionTerm("GongFrictionTerm", normal_force, mu, kf, df, p, false) {}
+  GongFrictionTerm(double mu, double kf, double df, double p)
+      : FrictionTerm("GongFrictionTerm", mu, kf, df, p, false) {}
+  std::unique_ptr<Term> clone() const override { return std::make_unique<GongFrictionTerm>(*this); }
 
   void accept_step(const EvalContext& ctx, double h) override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;

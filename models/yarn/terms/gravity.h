@@ -18,6 +18,7 @@ class GravityTerm : public ProportionalParameterTerm<8> {
   void add(const std::array<int, 8>& stencil, double rho);
 
   std::string name() const override { return "gravity"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<GravityTerm>(*this); }
   bool imex_explicit() const override { return true; }  // non-stiff external load
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;

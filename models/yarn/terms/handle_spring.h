@@ -17,6 +17,7 @@ class HandleSpringTerm : public StencilTerm<3> {
   void add(const std::array<int, 3>& stencil, const Vec3& anchor, double k);
 
   std::string name() const override { return "handles"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<HandleSpringTerm>(*this); }
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 

@@ -17,6 +17,7 @@ class ParallelContactTerm : public StencilTerm<2> {
   void add(const std::array<int, 2>& stencil, double kc_L, double d);
 
   std::string name() const override { return "parallel-contact"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<ParallelContactTerm>(*this); }
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 

@@ -19,6 +19,7 @@ class SegmentInertiaTerm : public ProportionalParameterTerm<8> {
   void add(const std::array<int, 8>& stencil, double rho);
 
   std::string name() const override { return "inertia"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<SegmentInertiaTerm>(*this); }
   bool conservative() const override { return false; }
   bool has_velocity_jacobian() const override { return true; }
   bool provides_mass() const override { return true; }

@@ -17,6 +17,7 @@ class CirioShearTerm : public ProportionalParameterTerm<9> {
   void add(const std::array<int, 9>& stencil, double kx_L);
 
   std::string name() const override { return "shear"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<CirioShearTerm>(*this); }
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 

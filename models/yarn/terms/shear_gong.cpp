@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "models/yarn/terms/crossing_angle.h"
+#include "models/yarn/terms/frozen_normal_force.h"
 
 namespace wl {
 namespace {
@@ -18,8 +19,7 @@ double safe_pow(double gamma, double e) { return gamma > 0.0 ? std::pow(gamma, e
 
 }  // namespace
 
-GongShearTerm::GongShearTerm(const std::vector<double>* normal_force, double L, double R, double c, double sigma)
-    : normal_force_(normal_force), L_(L), R_(R), c_(c), sigma_(sigma) {
+GongShearTerm::GongShearTerm(double L, double R, double c, double sigma) : L_(L), R_(R), c_(c), sigma_(sigma) {
   std::ostringstream bad;
   if (!(L > 0.0)) bad << "L = " << L << " (expected > 0)";
   else if (!(R > 0.0 && R * std::sqrt(2.0) < L))  // φ_l = 2 arcsin(R/L) < π/2
@@ -36,24 +36,20 @@ void GongShearTerm::add(const std::array<int, 9>& stencil, int node, double S_pi
     msg << "GongShearTerm: S pi R^2 = " << S_pi_R2 << " (expected >= 0)";
     throw std::invalid_argument(msg.str());
   }
-  if (normal_force_ && (node < 0 || node >= static_cast<int>(normal_force_->size()))) {
-    std::ostringstream msg;
-    msg << "GongShearTerm: node " << node << " outside the normal-force table of size " << normal_force_->size();
-    throw std::invalid_argument(msg.str());
-  }
   stencils_.push_back(stencil);
   node_.push_back(node);
   S_pi_R2_.push_back(S_pi_R2);
   lock_.push_back(lock ? 1 : 0);
+  Fn_.push_back(0.0);
 }
 
-double GongShearTerm::normal_force(int e) const { return normal_force_ ? (*normal_force_)[node_[e]] : 0.0; }
+void GongShearTerm::prepare(const EvalContext& ctx) { freeze_normal_force(ctx, node_, Fn_, "GongShearTerm"); }
 
 // k_sh(φ) and its derivatives, docs/models.md §3.4.3, with γ
 // and g at the mirrored angle φ* = φ̄ − |φ − φ̄| (docs/models.md §4.12): k(φ) = K(φ*),
 // k′ = K′(φ*) dφ*/dφ with dφ*/dφ = ±1, k″ = K″(φ*).
 GongShearTerm::Stiffness GongShearTerm::stiffness(int e, double phi) const {
-  const double Fn = normal_force(e);
+  const double Fn = Fn_[e];
   Stiffness s;
   if (!lock_[e]) {
     s.k = (Fn + 1.0) * S_pi_R2_[e];  // k_sh = (1+F_n) SπR², Gong et al. 2022 §3.3

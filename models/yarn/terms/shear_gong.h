@@ -9,9 +9,9 @@
 // the clean V(φ), V′, V″ form with the generic angle Hessian instead of the
 // paper's Jacobians, whose diagonal blocks lack a cross term (§4.13).
 //
-// F_n = (*normal_force)[node] is a FROZEN input: it is read at each evaluation
-// and treated as a constant, so ∂F_n/∂x is not part of the Jacobian (as in the
-// paper, docs/models.md §5.4) and energy() is the energy at that frozen F_n.
+// F_n of the crossing is a FROZEN input: prepare() copies it from the model's
+// table (EvalContext::normal_force) at each evaluation; it is treated as a constant, so ∂F_n/∂x is not part of the
+// Jacobian (as in the paper, docs/models.md §5.4) and energy() is the energy at that frozen F_n.
 //
 // Local stencil (x0, x1, x3): x0 the crossing, x1 a warp neighbour, x3 a weft
 // neighbour; the model adds all four quadrants. No force on u, v.
@@ -25,16 +25,17 @@ namespace wl {
 
 class GongShearTerm : public ProportionalParameterTerm<9> {
  public:
-  // normal_force: per-node contact normal force F_n (N), owned by the model
-  // (may be null: F_n = 0). L segment rest length (m), R yarn radius (m),
-  // c lock exponent (paper: 3), sigma lock sharpness (paper: 0.6; smaller = sharper, docs/models.md §4.11).
-  GongShearTerm(const std::vector<double>* normal_force, double L, double R, double c, double sigma);
+  // L segment rest length (m), R yarn radius (m), c lock exponent (paper: 3),
+  // sigma lock sharpness (paper: 0.6; smaller = sharper, docs/models.md §4.11).
+  GongShearTerm(double L, double R, double c, double sigma);
+  std::unique_ptr<Term> clone() const override { return std::make_unique<GongShearTerm>(*this); }
 
-  // node: index into *normal_force of the crossing x0. S_pi_R2 = SπR² (N) for
+  // node: id of the crossing x0 in the normal-force table. S_pi_R2 = SπR² (N) for
   // this quadrant. lock: use the smooth lock model (interlacing quadrants).
   void add(const std::array<int, 9>& stencil, int node, double S_pi_R2, bool lock);
 
   std::string name() const override { return "shear"; }
+  void prepare(const EvalContext& ctx) override;
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
@@ -46,13 +47,11 @@ class GongShearTerm : public ProportionalParameterTerm<9> {
   double lock_angle() const { return phi_l_; }  // φ_l = 2 arcsin(R/L)
 
  private:
-  double normal_force(int e) const;
-
-  const std::vector<double>* normal_force_;
   double L_, R_, c_, sigma_, phi_l_;
   std::vector<int> node_;
   std::vector<double> S_pi_R2_;
   std::vector<char> lock_;
+  std::vector<double> Fn_;  // per element, frozen by prepare()
 };
 
 }  // namespace wl

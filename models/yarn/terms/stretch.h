@@ -23,6 +23,7 @@ class StretchTerm : public ProportionalParameterTerm<8> {
   double stiffness(int e) const { return ks_[e]; }
 
   std::string name() const override { return "stretch"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<StretchTerm>(*this); }
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
