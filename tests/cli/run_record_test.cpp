@@ -146,7 +146,7 @@ TEST_F(RunRecord, KillNineLeavesCompleteMetricsRows) {
     EXPECT_EQ(std::count(line.begin(), line.end(), ','), columns) << line;
     ++rows;
   }
-  EXPECT_GT(rows, 40);
+  EXPECT_GE(rows, 40);  // at least the rows seen before the kill (header + 40 lines)
   // The lock dies with the process: the next run may use the folder.
   EXPECT_EQ(wait_exit(start("short.toml", out, {"--quiet"})), 0) << log();
   EXPECT_TRUE(consistent(out, "ok"));
