@@ -215,14 +215,12 @@ void ArkodeIntegrator::error_handler(int, const char*, const char* function, cha
 
 void ArkodeIntegrator::update_stats() {
   void* m = mem_.get();
-  long steps = 0, etf = 0, sfails = 0, nfe = 0, nfi = 0, nni = 0;
-  ARKStepGetNumSteps(m, &steps);
+  long etf = 0, sfails = 0, nfe = 0, nfi = 0, nni = 0;
   ARKStepGetNumErrTestFails(m, &etf);
   ARKStepGetNumStepSolveFails(m, &sfails);
   ARKStepGetNumRhsEvals(m, &nfe, &nfi);
   if (ls_) ARKStepGetNumNonlinSolvIters(m, &nni);
-  stats_.steps = steps;
-  stats_.rejected_steps = etf + sfails;
+  stats_.rejected_steps = etf + sfails;  // stats_.steps: the steps accepted by finish_step
   stats_.rhs_evals = nfe + nfi;
   stats_.jac_evals = ls_ ? ls_->setups() : 0;  // every Newton-matrix setup evaluates ∂f/∂q, ∂f/∂v
   stats_.linear_setups = (ls_ ? ls_->setups() : 0) + (mls_ ? mls_->setups() : 0) + own_setups_;

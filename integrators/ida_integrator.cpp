@@ -110,14 +110,12 @@ void IdaIntegrator::error_handler(int code, const char* module, const char* func
 
 void IdaIntegrator::update_stats() {
   void* m = mem_.get();
-  long steps = 0, etf = 0, ncf = 0, res = 0, nni = 0;
-  IDAGetNumSteps(m, &steps);
+  long etf = 0, ncf = 0, res = 0, nni = 0;
   IDAGetNumErrTestFails(m, &etf);
   IDAGetNumNonlinSolvConvFails(m, &ncf);
   IDAGetNumResEvals(m, &res);
   IDAGetNumNonlinSolvIters(m, &nni);
-  stats_.steps = steps;
-  stats_.rejected_steps = etf + ncf;
+  stats_.rejected_steps = etf + ncf;  // stats_.steps: the steps accepted by finish_step
   stats_.rhs_evals = res;
   stats_.jac_evals = ls_ ? ls_->setups() : 0;  // every setup evaluates ∂f/∂q, ∂f/∂v
   stats_.linear_setups = ls_ ? ls_->setups() : 0;
