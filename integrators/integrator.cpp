@@ -3,6 +3,7 @@
 #include "integrators/integrator.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "integrators/step_clock.h"
@@ -96,11 +97,37 @@ StepResult Integrator::finish_step(double t_new, long nonlinear_iters, double wa
   return r;
 }
 
-StepResult Integrator::accept_step_state(double t_new, const double* y, long nonlinear_iters, double wall_s) {
+StepResult Integrator::advance_library_steps(double t_out, IntegratorStats& timing, const LibraryStepper& library) {
   const int n = model_->num_dofs();
-  q_ = Eigen::Map<const Vec>(y, n);
-  v_ = Eigen::Map<const Vec>(y + n, n);
-  return finish_step(t_new, nonlinear_iters, wall_s);
+  StepResult result;
+  {
+    StepClock clock(timing);
+    const double eps = 1e-12 * std::max(1.0, std::abs(t_out));
+    if (t_out - t_ > eps) library.set_stop_time(t_out);
+    long last_nonlinear_iters = stats_.nonlinear_iters;
+    while (t_out - t_ > eps) {
+      if (stats_.steps >= opt_.max_steps) {
+        result = {Outcome::max_steps, "step limit reached (" + std::to_string(opt_.max_steps) + " steps)"};
+        break;
+      }
+      const double wall0 = clock.elapsed_wall();
+      double t_reached = t_;
+      const int flag = library.step(t_out, t_reached);
+      library.update_stats();
+      if (flag < 0) {
+        result = library.failure(flag);
+        break;
+      }
+      q_ = Eigen::Map<const Vec>(library.y, n);
+      v_ = Eigen::Map<const Vec>(library.y + n, n);
+      result = finish_step(t_reached, stats_.nonlinear_iters - last_nonlinear_iters, clock.elapsed_wall() - wall0);
+      last_nonlinear_iters = stats_.nonlinear_iters;
+      if (result.outcome != Outcome::ok) break;
+    }
+    if (result.outcome == Outcome::ok) t_ = t_out;
+  }
+  library.update_stats();
+  return result;
 }
 
 SparseSolver::Options Integrator::step_solver_options() const {

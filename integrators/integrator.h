@@ -140,9 +140,18 @@ class Integrator {
   // Shared part of initialize(): binds the model and options, sets the state
   // (pinned DoFs at rest) and clears the statistics.
   void bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt);
-  // After one step of a library integrator that ended at t_new with state
-  // y = (q, v): stores the state in q_, v_ and calls finish_step.
-  StepResult accept_step_state(double t_new, const double* y, long nonlinear_iters, double wall_s);
+  // A library integrator in one-step mode (SUNDIALS), for advance_library_steps.
+  struct LibraryStepper {
+    std::function<void(double t_out)> set_stop_time;
+    std::function<int(double t_out, double& t_reached)> step;  // one step towards t_out: the library's flag
+    std::function<void()> update_stats;                        // the library's counters into stats_
+    std::function<StepResult(int flag)> failure;               // the outcome of a negative flag
+    const double* y = nullptr;                                 // the library's state (q, v) after a step
+  };
+  // Library steps from t_ to exactly t_out (the library's stop time), each
+  // through finish_step, honouring opt_.max_steps; wall and CPU time go to
+  // `timing`.
+  StepResult advance_library_steps(double t_out, IntegratorStats& timing, const LibraryStepper& library);
   // The options of the step matrix solver for this model (opt_ and the model's asymmetric terms).
   SparseSolver::Options step_solver_options() const;
   // Copies a step matrix solver's statistics into stats_.
