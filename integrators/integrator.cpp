@@ -83,13 +83,12 @@ StepResult Integrator::fixed_step(double h, const std::function<StepResult(doubl
     wall = clock.elapsed_wall();
   }
   if (r.outcome != Outcome::ok) return r;
-  return finish_step(t_ + h, iters, wall);
+  return finish_step(t_ + h, h, iters, wall);
 }
 
-StepResult Integrator::finish_step(double t_new, long nonlinear_iters, double wall_s) {
+StepResult Integrator::finish_step(double t_new, double h, long nonlinear_iters, double wall_s) {
   StepResult r = check_state(q_, v_, opt_);
   if (r.outcome != Outcome::ok) return r;
-  const double h = t_new - t_;
   t_ = t_new;
   ++stats_.steps;
   model_->accept_step(t_, q_, v_, h);
@@ -120,7 +119,8 @@ StepResult Integrator::advance_library_steps(double t_out, IntegratorStats& timi
       }
       q_ = Eigen::Map<const Vec>(library.y, n);
       v_ = Eigen::Map<const Vec>(library.y + n, n);
-      result = finish_step(t_reached, stats_.nonlinear_iters - last_nonlinear_iters, clock.elapsed_wall() - wall0);
+      result = finish_step(t_reached, t_reached - t_, stats_.nonlinear_iters - last_nonlinear_iters,
+                           clock.elapsed_wall() - wall0);
       last_nonlinear_iters = stats_.nonlinear_iters;
       if (result.outcome != Outcome::ok) break;
     }

@@ -133,10 +133,11 @@ class Integrator {
   // advances q_ and v_ (timed into stats_), then finish_step does the rest.
   StepResult fixed_step(double h, const std::function<StepResult(double h, int& nonlinear_iters)>& move);
   // The bookkeeping after every step of every method: checks the state
-  // (q_, v_) reached at t_new (check_state); when it is sound, advances t_ and
-  // the step count, lets the model update its history (Model::accept_step)
-  // and reports the step (on_step). A failed check leaves t_ and the count.
-  StepResult finish_step(double t_new, long nonlinear_iters, double wall_s);
+  // (q_, v_) reached by a step of size h at t_new (check_state); when it is
+  // sound, sets t_ = t_new, counts the step, lets the model update its history
+  // (Model::accept_step) and reports the step (on_step). A failed check leaves
+  // t_ and the count.
+  StepResult finish_step(double t_new, double h, long nonlinear_iters, double wall_s);
   // Shared part of initialize(): binds the model and options, sets the state
   // (pinned DoFs at rest) and clears the statistics.
   void bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt);
