@@ -4,7 +4,7 @@
 # Extra arguments go to `weavelab calibrate` (e.g. --starts 8, --tests shear).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiments/setup.sh >/dev/null
+tools/setup.sh >/dev/null
 out=${OUT:-results/calibration/hanging_wind}
 build/weavelab calibrate experiments/scenes/hanging_wind.toml --out "$out" \
   --validate experiments/scenes/hanging_wind.toml --validate experiments/scenes/swing_17.toml "$@"

@@ -8,7 +8,7 @@
 # Writes results/dynamic_calibration/ and its summary.md. About 10 min on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiments/setup.sh >/dev/null
+tools/setup.sh >/dev/null
 out=${OUT:-results/dynamic_calibration}
 static=${STATIC:-results/calibration/hanging_wind/params.toml}
 [ -f "$static" ] || { echo "dynamic_calibration.sh: $static missing: run experiments/calibrate.sh first" >&2; exit 2; }

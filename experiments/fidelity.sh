@@ -10,7 +10,7 @@
 # Extra arguments go to `weavelab fidelity` (e.g. --tolerance 0.0008).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiments/setup.sh >/dev/null
+tools/setup.sh >/dev/null
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 start=$(date +%s)
 for spec in hanging_wind:0.5:3 hanging_wind_65:0.2:1; do  # scene:duration:repeats

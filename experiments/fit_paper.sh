@@ -9,7 +9,7 @@
 # About 30 min on 2 idle cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiments/setup.sh >/dev/null
+tools/setup.sh >/dev/null
 out=${OUT:-results/fit_paper}
 scene=experiments/scenes/hanging_wind.toml
 mkdir -p "$out"

@@ -4,6 +4,6 @@
 # Extra arguments go to snakemake (e.g. --profile experiments/pattern_study/profiles/cluster).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiments/setup.sh >/dev/null
+tools/setup.sh >/dev/null
 command -v snakemake >/dev/null || { echo "pattern_study.sh: needs Debian's snakemake (apt-get install snakemake)" >&2; exit 1; }
 snakemake -s experiments/pattern_study/Snakefile --cores "$(nproc)" "$@"

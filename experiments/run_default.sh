@@ -30,7 +30,7 @@ step() {  # step "description" command...: runs the command; on failure, says wh
   fi
 }
 
-step "setup and build" experiments/setup.sh
+step "setup and build" tools/setup.sh
 mkdir -p "$out"
 for model in yarn fem; do
   step "$model run of $scene (be-linear)" \

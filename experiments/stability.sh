@@ -6,7 +6,7 @@
 # stability.png/.svg). Extra arguments go to `weavelab stability`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiments/setup.sh
+tools/setup.sh
 scene=${WL_SCENE:-experiments/scenes/stability_9.toml}
 out=${WL_OUT:-results/stability}
 start=$(date +%s)

@@ -7,7 +7,7 @@
 # Extra arguments go to `weavelab work-precision` (e.g. --integrators ida,be-linear).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-experiments/setup.sh
+tools/setup.sh
 scene=${WL_SCENE:-experiments/scenes/work_precision_17.toml}
 out=${WL_OUT:-results/work_precision}
 start=$(date +%s)

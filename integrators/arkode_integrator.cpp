@@ -27,7 +27,7 @@ void ArkodeIntegrator::initialize(Model& model, double t0, const Vec& q0, const 
   bind(model, t0, q0, v0, opt);
   n_ = model.num_dofs();
   own_ = {};
-  own_setups_ = own_solves_ = last_nni_ = 0;
+  own_setups_ = own_solves_ = 0;
   attempts_setup_ = -1;
   last_error_.clear();
   allocate_evaluation(model, ev_);
@@ -215,14 +215,12 @@ void ArkodeIntegrator::error_handler(int, const char*, const char* function, cha
 
 void ArkodeIntegrator::update_stats() {
   void* m = mem_.get();
-  long steps = 0, etf = 0, sfails = 0, nfe = 0, nfi = 0, nni = 0;
-  ARKStepGetNumSteps(m, &steps);
+  long etf = 0, sfails = 0, nfe = 0, nfi = 0, nni = 0;
   ARKStepGetNumErrTestFails(m, &etf);
   ARKStepGetNumStepSolveFails(m, &sfails);
   ARKStepGetNumRhsEvals(m, &nfe, &nfi);
   if (ls_) ARKStepGetNumNonlinSolvIters(m, &nni);
-  stats_.steps = steps;
-  stats_.rejected_steps = etf + sfails;
+  stats_.rejected_steps = etf + sfails;  // stats_.steps: the steps accepted by finish_step
   stats_.rhs_evals = nfe + nfi;
   stats_.jac_evals = ls_ ? ls_->setups() : 0;  // every Newton-matrix setup evaluates ∂f/∂q, ∂f/∂v
   stats_.linear_setups = (ls_ ? ls_->setups() : 0) + (mls_ ? mls_->setups() : 0) + own_setups_;
@@ -247,33 +245,16 @@ StepResult ArkodeIntegrator::failure(int flag) {
 
 StepResult ArkodeIntegrator::advance_to(double t_out) {
   if (!mem_.get()) return {Outcome::diverged, name() + ": not initialized"};
-  StepResult result;
-  {
-    StepClock clock(own_);
-    const double eps = 1e-12 * std::max(1.0, std::abs(t_out));
-    if (t_out - t_ > eps) ARKStepSetStopTime(mem_.get(), t_out);
-    while (t_out - t_ > eps) {
-      if (stats_.steps >= opt_.max_steps) {
-        result = {Outcome::max_steps, "step limit reached (" + std::to_string(opt_.max_steps) + " steps)"};
-        break;
-      }
-      const double wall0 = clock.elapsed_wall();
-      double tret = t_;
-      const int flag = ARKStepEvolve(mem_.get(), t_out, y_.get(), &tret, ARK_ONE_STEP);
-      update_stats();
-      if (flag < 0) {
-        result = failure(flag);
-        break;
-      }
-      result = accept_step_state(tret, sun::data(y_.get()), stats_.nonlinear_iters - last_nni_,
-                                 clock.elapsed_wall() - wall0);
-      last_nni_ = stats_.nonlinear_iters;
-      if (result.outcome != Outcome::ok) break;
-    }
-    if (result.outcome == Outcome::ok) t_ = t_out;
-  }
-  update_stats();
-  return result;
+  void* m = mem_.get();
+  LibraryStepper arkode;
+  arkode.set_stop_time = [m](double t_stop) { ARKStepSetStopTime(m, t_stop); };
+  arkode.step = [this, m](double t_stop, double& t_reached) {
+    return ARKStepEvolve(m, t_stop, y_.get(), &t_reached, ARK_ONE_STEP);
+  };
+  arkode.update_stats = [this] { update_stats(); };
+  arkode.failure = [this](int flag) { return failure(flag); };
+  arkode.y = sun::data(y_.get());
+  return advance_library_steps(t_out, own_, arkode);
 }
 
 }  // namespace wl

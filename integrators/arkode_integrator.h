@@ -75,7 +75,7 @@ class ArkodeIntegrator : public Integrator {
   std::unique_ptr<SparseSolver> msolver_;  // M(q) solves in the explicit-form right-hand side
   Vec mass_q_;                             // the q of msolver_'s factorization
   bool mass_factored_ = false;
-  long own_setups_ = 0, own_solves_ = 0, last_nni_ = 0;
+  long own_setups_ = 0, own_solves_ = 0;
   long attempts_setup_ = -1;
   double t_setup_ = 0.0;  // ARKODE's step attempts at the last Newton-matrix setup
   IntegratorStats own_;   // wall/CPU time accumulated here

@@ -1,8 +1,6 @@
 #include "integrators/backward_euler.h"
 
-#include <chrono>
 #include <cmath>
-#include <ctime>
 
 namespace wl {
 namespace {
@@ -72,9 +70,11 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
     ev_.mass = m0;
     form_step_matrix(h);
     ++stats_.linear_setups;
-    if (!solver_->factorize(a_)) return {Outcome::diverged, "Newton matrix: " + solver_->failure()};
+    if (!solver_->factorize(a_))
+      return {Outcome::diverged, "Newton matrix: " + solver_->failure(), FailureCause::newton};
     Vec dv;
-    if (!solver_->solve(-g, dv)) return {Outcome::diverged, "Newton matrix: " + solver_->failure()};
+    if (!solver_->solve(-g, dv))
+      return {Outcome::diverged, "Newton matrix: " + solver_->failure(), FailureCause::newton};
     ++stats_.linear_solves;
     ++stats_.nonlinear_iters;
     // Backtracking line search on ‖G‖.
@@ -94,7 +94,7 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
     g = g_try;
     *iters = it;
     const double vscale = 1.0 + v.lpNorm<Eigen::Infinity>();
-    if (!g.allFinite()) return {Outcome::nan, "NaN in Newton residual"};
+    if (!g.allFinite()) return {Outcome::nan, "NaN in Newton residual", FailureCause::newton};
     if (alpha * dv.lpNorm<Eigen::Infinity>() <= opt_.newton_tol * vscale || g.norm() <= opt_.newton_tol * g0) {
       v_ = v;
       zero_fixed(v_, fixed_);
@@ -103,24 +103,15 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
       return {};
     }
   }
-  return {Outcome::diverged, "Newton did not converge in " + std::to_string(opt_.newton_max_iters) + " iterations"};
+  return {Outcome::diverged, "Newton did not converge in " + std::to_string(opt_.newton_max_iters) + " iterations",
+          FailureCause::newton};
 }
 
 StepResult BackwardEuler::step(double h) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  const std::clock_t cpu0 = std::clock();
-  int iters = 0;
-  StepResult r = variant_ == Variant::linear ? step_linear(h, &iters) : step_newton(h, &iters);
-  if (r.outcome == Outcome::ok) r = check_state(q_, v_, opt_);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  stats_.wall_s += wall;
-  stats_.cpu_s += double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  StepResult r = fixed_step(h, [this](double hh, int& iters) {
+    return variant_ == Variant::linear ? step_linear(hh, &iters) : step_newton(hh, &iters);
+  });
   record_solver(*solver_);
-  if (r.outcome != Outcome::ok) return r;
-  t_ += h;
-  ++stats_.steps;
-  model_->accept_step(t_, q_, v_, h);
-  if (on_step) on_step({t_, h, iters, wall});
   return r;
 }
 

@@ -20,7 +20,6 @@ void IdaIntegrator::initialize(Model& model, double t0, const Vec& q0, const Vec
   n_ = model.num_dofs();
   own_ = {};
   last_error_.clear();
-  last_nni_ = 0;
   allocate_evaluation(model, ev_);
 
   // Consistent initial accelerations v′₀ = M⁻¹ f(t0, q0, v0) (pinned: 0).
@@ -110,14 +109,12 @@ void IdaIntegrator::error_handler(int code, const char* module, const char* func
 
 void IdaIntegrator::update_stats() {
   void* m = mem_.get();
-  long steps = 0, etf = 0, ncf = 0, res = 0, nni = 0;
-  IDAGetNumSteps(m, &steps);
+  long etf = 0, ncf = 0, res = 0, nni = 0;
   IDAGetNumErrTestFails(m, &etf);
   IDAGetNumNonlinSolvConvFails(m, &ncf);
   IDAGetNumResEvals(m, &res);
   IDAGetNumNonlinSolvIters(m, &nni);
-  stats_.steps = steps;
-  stats_.rejected_steps = etf + ncf;
+  stats_.rejected_steps = etf + ncf;  // stats_.steps: the steps accepted by finish_step
   stats_.rhs_evals = res;
   stats_.jac_evals = ls_ ? ls_->setups() : 0;  // every setup evaluates ∂f/∂q, ∂f/∂v
   stats_.linear_setups = ls_ ? ls_->setups() : 0;
@@ -140,34 +137,16 @@ StepResult IdaIntegrator::failure(int flag) {
 
 StepResult IdaIntegrator::advance_to(double t_out) {
   if (!mem_.get()) return {Outcome::diverged, "ida: not initialized"};
-  StepResult result;
-  {
-    StepClock clock(own_);
-    const double eps = 1e-12 * std::max(1.0, std::abs(t_out));
-    if (t_out - t_ > eps) IDASetStopTime(mem_.get(), t_out);
-    while (t_out - t_ > eps) {
-      if (stats_.steps >= opt_.max_steps) {
-        result = {Outcome::max_steps, "step limit reached (" + std::to_string(opt_.max_steps) + " steps)"};
-        break;
-      }
-      const double wall0 = clock.elapsed_wall();
-      double tret = t_;
-      const int flag = IDASolve(mem_.get(), t_out, &tret, y_.get(), yp_.get(), IDA_ONE_STEP);
-      update_stats();
-      if (flag < 0) {
-        result = failure(flag);
-        break;
-      }
-      long nni = 0;
-      IDAGetNumNonlinSolvIters(mem_.get(), &nni);
-      result = accept_step_state(tret, sun::data(y_.get()), nni - last_nni_, clock.elapsed_wall() - wall0);
-      last_nni_ = nni;
-      if (result.outcome != Outcome::ok) break;
-    }
-    if (result.outcome == Outcome::ok) t_ = t_out;
-  }
-  update_stats();
-  return result;
+  void* m = mem_.get();
+  LibraryStepper ida;
+  ida.set_stop_time = [m](double t_stop) { IDASetStopTime(m, t_stop); };
+  ida.step = [this, m](double t_stop, double& t_reached) {
+    return IDASolve(m, t_stop, &t_reached, y_.get(), yp_.get(), IDA_ONE_STEP);
+  };
+  ida.update_stats = [this] { update_stats(); };
+  ida.failure = [this](int flag) { return failure(flag); };
+  ida.y = sun::data(y_.get());
+  return advance_library_steps(t_out, own_, ida);
 }
 
 }  // namespace wl

@@ -54,7 +54,6 @@ class IdaIntegrator : public Integrator {
   long ncf_setup_ = 0;     // IDA's Newton convergence failures at that setup
   IntegratorStats own_;    // wall/CPU time accumulated here
   std::string last_error_;
-  long last_nni_ = 0;
   // SUNDIALS objects: context first, memory last (destroyed first).
   sun::Context ctx_;
   sun::Vector y_, yp_;

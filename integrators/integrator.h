@@ -58,10 +58,20 @@ struct StepRecord {
   double wall_s = 0.0;
 };
 
+// What detected a failure that no library reported (a library's failure
+// carries its flag in StepResult instead), for callers that classify failures
+// without reading messages (docs/design.md §6.1).
+enum class FailureCause {
+  other,          // no failure, or one the outcome and message describe (a singular matrix, an invalid state)
+  runaway_speed,  // a speed beyond IntegratorOptions::runaway_speed or beyond a caller's bound
+  newton,         // the Newton iteration of an in-house implicit method (its matrix, its residual, no convergence)
+};
+
 struct StepResult {
   StepResult() = default;
   StepResult(Outcome o, std::string msg, int flag = 0, std::string flag_name = {})
       : outcome(o), message(std::move(msg)), library_flag(flag), library_flag_name(std::move(flag_name)) {}
+  StepResult(Outcome o, std::string msg, FailureCause c) : outcome(o), message(std::move(msg)), cause(c) {}
 
   Outcome outcome = Outcome::ok;
   std::string message;  // filled when outcome != ok
@@ -69,6 +79,7 @@ struct StepResult {
   // e.g. -4 and "ARK_CONV_FAILURE"); 0 and "" when the failure is not a library's.
   int library_flag = 0;
   std::string library_flag_name;
+  FailureCause cause = FailureCause::other;
 };
 
 // How a method's energy behaves on an undamped oscillator (docs/design.md §6.1).
@@ -116,15 +127,32 @@ class Integrator {
 
  protected:
   // Fixed steps of opt_.dt from t_ to exactly t_out (the last one shortened),
-  // honouring opt_.max_steps; `step(h)` advances t_, q_, v_ by one step.
+  // honouring opt_.max_steps; `step(h)` is one fixed_step of size h.
   StepResult advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step);
+  // One step of size h of an in-house method: `move(h, nonlinear_iters)`
+  // advances q_ and v_ (timed into stats_), then finish_step does the rest.
+  StepResult fixed_step(double h, const std::function<StepResult(double h, int& nonlinear_iters)>& move);
+  // The bookkeeping after every step of every method: checks the state
+  // (q_, v_) reached by a step of size h at t_new (check_state); when it is
+  // sound, sets t_ = t_new, counts the step, lets the model update its history
+  // (Model::accept_step) and reports the step (on_step). A failed check leaves
+  // t_ and the count.
+  StepResult finish_step(double t_new, double h, long nonlinear_iters, double wall_s);
   // Shared part of initialize(): binds the model and options, sets the state
   // (pinned DoFs at rest) and clears the statistics.
   void bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt);
-  // After one step of a library integrator that ended at t_new with state
-  // y = (q, v): stores and checks the state, lets the model update its
-  // history and reports the step.
-  StepResult accept_step_state(double t_new, const double* y, long nonlinear_iters, double wall_s);
+  // A library integrator in one-step mode (SUNDIALS), for advance_library_steps.
+  struct LibraryStepper {
+    std::function<void(double t_out)> set_stop_time;
+    std::function<int(double t_out, double& t_reached)> step;  // one step towards t_out: the library's flag
+    std::function<void()> update_stats;                        // the library's counters into stats_
+    std::function<StepResult(int flag)> failure;               // the outcome of a negative flag
+    const double* y = nullptr;                                 // the library's state (q, v) after a step
+  };
+  // Library steps from t_ to exactly t_out (the library's stop time), each
+  // through finish_step, honouring opt_.max_steps; wall and CPU time go to
+  // `timing`.
+  StepResult advance_library_steps(double t_out, IntegratorStats& timing, const LibraryStepper& library);
   // The options of the step matrix solver for this model (opt_ and the model's asymmetric terms).
   SparseSolver::Options step_solver_options() const;
   // Copies a step matrix solver's statistics into stats_.

@@ -1,5 +1,4 @@
-#include <algorithm>
-#include <cmath>
+// The integrators by name (docs/design.md §6.1).
 #include <stdexcept>
 
 #include "integrators/arkode_integrator.h"
@@ -9,93 +8,6 @@
 #include "integrators/symplectic_euler.h"
 
 namespace wl {
-
-const char* to_string(Outcome o) {
-  switch (o) {
-    case Outcome::ok: return "ok";
-    case Outcome::diverged: return "diverged";
-    case Outcome::nan: return "nan";
-    case Outcome::step_too_small: return "step_too_small";
-    case Outcome::max_steps: return "max_steps";
-    case Outcome::not_offered: return "not_offered";
-    case Outcome::interrupted: return "interrupted";
-    case Outcome::invalid_state: return "invalid_state";
-  }
-  return "unknown";
-}
-
-StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) {
-  if (!q.allFinite() || !v.allFinite()) return {Outcome::nan, "NaN or Inf in the state"};
-  const double vmax = v.lpNorm<Eigen::Infinity>();
-  if (vmax > opt.runaway_speed)
-    return {Outcome::diverged,
-            "runaway state: max |v| = " + std::to_string(vmax) + " exceeds " + std::to_string(opt.runaway_speed)};
-  return {};
-}
-
-StepResult Integrator::check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) const {
-  if (std::string why = model_->invalid_state(q); !why.empty()) return {Outcome::invalid_state, why};
-  return wl::check_state(q, v, opt);
-}
-
-void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
-  model_ = &model;
-  opt_ = opt;
-  t_ = t0;
-  q_ = q0;
-  v_ = v0;
-  fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
-  for (int i : fixed_) v_[i] = 0.0;
-  stats_ = {};
-  if (!sensitivity_keys_.empty()) {
-    if (!offers_sensitivities())
-      throw std::invalid_argument("integrator '" + name() + "' does not offer parameter sensitivities");
-    const std::vector<std::string> known = model.parameter_keys();
-    for (const std::string& key : sensitivity_keys_)
-      if (std::find(known.begin(), known.end(), key) == known.end())
-        throw std::invalid_argument("the " + model.name() + " model of this scene does not differentiate '" + key +
-                                    "'");
-  }
-  dq_dp_ = Eigen::MatrixXd::Zero(model.num_dofs(), static_cast<Eigen::Index>(sensitivity_keys_.size()));
-  dv_dp_ = dq_dp_;
-}
-
-StepResult Integrator::advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step) {
-  while (t_out - t_ > 1e-9 * opt_.dt) {
-    if (stats_.steps >= opt_.max_steps) return {Outcome::max_steps, "step limit reached"};
-    double h = std::min(opt_.dt, t_out - t_);
-    if (t_out - t_ - h < 1e-9 * opt_.dt) h = t_out - t_;
-    StepResult r = step(h);
-    if (r.outcome != Outcome::ok) return r;
-  }
-  t_ = t_out;
-  return {};
-}
-
-StepResult Integrator::accept_step_state(double t_new, const double* y, long nonlinear_iters, double wall_s) {
-  const int n = model_->num_dofs();
-  const double h = t_new - t_;
-  t_ = t_new;
-  q_ = Eigen::Map<const Vec>(y, n);
-  v_ = Eigen::Map<const Vec>(y + n, n);
-  StepResult r = check_state(q_, v_, opt_);
-  if (r.outcome != Outcome::ok) return r;
-  model_->accept_step(t_, q_, v_, h);
-  if (on_step) on_step({t_, h, static_cast<int>(nonlinear_iters), wall_s});
-  return r;
-}
-
-SparseSolver::Options Integrator::step_solver_options() const {
-  return {opt_.linear_solver, model_->asymmetric_terms()};
-}
-
-void Integrator::record_solver(const SparseSolver& solver) {
-  const SparseSolver::Statistics& s = solver.statistics();
-  stats_.factorizations = s.factorizations;
-  stats_.krylov_iters = s.krylov_iterations;
-  stats_.step_matrix_asymmetry = s.max_asymmetry;
-  stats_.linear_solver = solver.description();
-}
 
 std::vector<std::string> integrator_names() {
   return {"be-linear", "be-newton", "ida", "arkode-erk", "arkode-dirk", "arkode-imex", "symplectic"};

@@ -1,7 +1,5 @@
 #include "integrators/symplectic_euler.h"
 
-#include "integrators/step_clock.h"
-
 namespace wl {
 
 void SymplecticEuler::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
@@ -12,7 +10,10 @@ void SymplecticEuler::initialize(Model& model, double t0, const Vec& q0, const V
 }
 
 StepResult SymplecticEuler::step(double h) {
-  StepClock clock(stats_);
+  return fixed_step(h, [this](double hh, int&) { return move(hh); });
+}
+
+StepResult SymplecticEuler::move(double h) {
   const bool refactor = model_->mass_depends_on_q() || !factorized_;
   model_->evaluate(t_, q_, v_, kForce | (refactor ? kMass : 0u), ev_);
   ++stats_.rhs_evals;
@@ -26,13 +27,7 @@ StepResult SymplecticEuler::step(double h) {
   v_ += h * a_;
   for (int i : fixed_) v_[i] = 0.0;
   q_ += h * v_;
-  StepResult r = check_state(q_, v_, opt_);
-  if (r.outcome != Outcome::ok) return r;
-  t_ += h;
-  ++stats_.steps;
-  model_->accept_step(t_, q_, v_, h);
-  if (on_step) on_step({t_, h, 0, clock.elapsed_wall()});
-  return r;
+  return {};
 }
 
 StepResult SymplecticEuler::advance_to(double t_out) {

@@ -23,9 +23,11 @@ class SymplecticEuler : public Integrator {
   }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;
+  // One step of size h from the current state, with the shared bookkeeping.
   StepResult step(double h);
 
  private:
+  StepResult move(double h);  // v₁, q₁ from (q₀, v₀)
   Vec a_;
   Evaluation ev_;
   std::unique_ptr<SparseSolver> solver_;

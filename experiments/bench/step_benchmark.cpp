@@ -62,6 +62,9 @@ int main(int argc, char** argv) {
                     f.step.wall_ms() / f.cholmod_reference.wall_ms(), f.factorizations_per_step, f.krylov_per_step,
                     f.peak_mb, f.solver.c_str());
         std::fflush(stdout);
+      } catch (const std::invalid_argument& e) {  // a bad option or scene value
+        std::fprintf(stderr, "%s: %s\n", s.c_str(), e.what());
+        return 2;
       } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: %s\n", s.c_str(), e.what());
         return 1;

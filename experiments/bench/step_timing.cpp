@@ -43,7 +43,12 @@ Figures measure(const Scene& scene, const std::string& model_name, const std::st
   fig.model = model_name;
   fig.parts = parts;
   auto model = make_model(scene, model_name);
-  BackwardEuler be(integrator == "be-newton" ? BackwardEuler::Variant::newton : BackwardEuler::Variant::linear);
+  const std::unique_ptr<Integrator> named = make_integrator(integrator);
+  auto* backward_euler = dynamic_cast<BackwardEuler*>(named.get());
+  if (!backward_euler)
+    throw std::invalid_argument("option '--integrator': got '" + integrator +
+                                "', expected a backward Euler method (be-linear, be-newton)");
+  BackwardEuler& be = *backward_euler;
   IntegratorOptions opt;
   opt.dt = scene.dt_s;
   opt.linear_solver = method;

@@ -37,7 +37,8 @@ struct Figures {
 };
 
 // `warmup` untimed steps, then `steps` timed ones (with factor+solve and
-// assembly when `parts`). Throws std::runtime_error when a step fails.
+// assembly when `parts`). Throws std::invalid_argument for an integrator that
+// is not backward Euler, std::runtime_error when a step fails.
 Figures measure(const Scene& scene, const std::string& model_name, const std::string& integrator, int warmup, int steps,
                 bool parts, LinearSolverMethod method = LinearSolverMethod::automatic);
 

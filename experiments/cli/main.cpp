@@ -18,7 +18,6 @@
 #include "experiments/driver/run.h"
 #include "experiments/driver/run_settings.h"
 #include "experiments/driver/stability.h"
-#include "experiments/driver/sweep.h"
 #include "experiments/driver/work_precision.h"
 #include "experiments/output/run_reader.h"
 #include "integrators/integrator.h"

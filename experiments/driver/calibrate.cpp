@@ -4,12 +4,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
 
 #include "experiments/driver/experiment_meta.h"
-#include "experiments/driver/sweep.h"
+#include "experiments/driver/recorded_run.h"
 #include "experiments/output/atomic_file.h"
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
@@ -20,6 +21,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Reads a whole text file; throws std::runtime_error naming the path.
+std::string read_text_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read '" + path.string() + "'");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
 
 // The yarn crossings of one output frame: positions and material coordinates (u, v).
 struct CrossingFrame {
@@ -256,7 +266,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
         {"first_guess", default_fem_material(vs)}, {"calibrated_stiffness", stiff_only}, {"calibrated", full}};
     Json entry = Json::object();
     entry.set("scene", c.validate[s].string());
-    entry.set("scene_hash", reference_hash(p.validation_texts[s]));
+    entry.set("scene_hash", text_hash(p.validation_texts[s]));
     entry.set("frames", static_cast<int>(yarn.size()));
     entry.set("yarn_cpu_s_per_step", cpu_per_step(yr));
     Json vars = Json::array();
@@ -295,7 +305,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   write_fem_parameter_file(
       (c.out_dir / "params.toml").string(), calibrated,
       {{"source_scene", c.scene_path.string()},
-       {"source_scene_hash", reference_hash(p.scene_text)},
+       {"source_scene_hash", text_hash(p.scene_text)},
        {"git_revision", git_revision()},
        {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
        {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene" : "false"},
@@ -306,7 +316,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   // calibration.json
   Json j = Json::object();
   j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
-  j.set("scene_hash", reference_hash(p.scene_text));
+  j.set("scene_hash", text_hash(p.scene_text));
   j.set("patch", patch);
   j.set("sliding", c.sliding);
   j.set("border_strip", c.border_strip);

@@ -1,6 +1,8 @@
 #include "experiments/driver/experiment_meta.h"
 
 #include <chrono>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <ctime>
 
@@ -57,6 +59,17 @@ void add_provenance(Json& j) {
     env.set(name, value ? Json(std::string(value)) : Json());
   }
   j.set("environment", env);
+}
+
+std::string text_hash(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a 64
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
 }
 
 }  // namespace wl

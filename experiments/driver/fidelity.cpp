@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "experiments/driver/experiment_meta.h"
-#include "experiments/driver/sweep.h"
+#include "experiments/driver/recorded_run.h"
 #include "experiments/output/atomic_file.h"
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
@@ -337,7 +337,7 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   for (const auto& [name, why] : p.left_out) left_out.push(Json::object().set("variant", name).set("reason", why));
   Json j = Json::object();
   j.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, c.overrides));
-  j.set("scene_hash", reference_hash(c.scene.text));
+  j.set("scene_hash", text_hash(c.scene.text));
   j.set("reference", p.reference.name);
   j.set("calibration", p.calibration.empty() ? "none: the calibrated continuum variants are left out" : p.calibration);
   j.set("cloth_size_m", p.cloth_size_m);

@@ -5,7 +5,6 @@
 
 #include "calibration/scene_parameters.h"
 #include "experiments/driver/experiment_meta.h"
-#include "experiments/driver/sweep.h"
 #include "experiments/output/atomic_file.h"
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
@@ -96,7 +95,7 @@ TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) 
     write_fem_parameter_file((c.out_dir / "params.toml").string(), fem_material(fitted),
                              {{"method", "weavelab fit: trajectory of " + c.target_dir.string()},
                               {"source_scene", c.scene_path.string()},
-                              {"source_scene_hash", reference_hash(p.scene.text)},
+                              {"source_scene_hash", text_hash(p.scene.text)},
                               {"frames", std::to_string(p.target.size())},
                               {"created", utc_now()}});
   }

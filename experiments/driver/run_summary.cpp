@@ -2,7 +2,6 @@
 
 #include "experiments/driver/experiment_meta.h"
 #include "experiments/driver/memory_estimate.h"
-#include "experiments/driver/sweep.h"
 #include "experiments/output/atomic_file.h"
 
 namespace wl {

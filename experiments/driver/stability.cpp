@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "experiments/driver/experiment_meta.h"
+#include "experiments/driver/recorded_run.h"
+#include "experiments/driver/scene_scaling.h"
 #include "experiments/output/atomic_file.h"
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
@@ -16,15 +18,18 @@
 namespace wl {
 namespace {
 
-// A short name for why a probe was unbounded: the SUNDIALS flag when the
-// library reported the failure, "runaway" for a speed beyond the bound, "newton" for a
-// Newton failure of the in-house methods, else the outcome.
+// A short name for why a probe was unbounded, from the structured result: the
+// SUNDIALS flag when the library reported the failure, "runaway" for a speed
+// beyond the bound, "newton" for a Newton failure of the in-house methods, else
+// the outcome.
 std::string failure_mode(const StabilityProbe& p) {
-  const std::string& msg = p.result.message;
   if (p.result.outcome == Outcome::ok) return p.bounded ? "" : "runaway";
   if (!p.result.library_flag_name.empty()) return p.result.library_flag_name;
-  if (msg.find("runaway") != std::string::npos || msg.find("exceeds the bound") != std::string::npos) return "runaway";
-  if (msg.find("Newton") != std::string::npos) return "newton";
+  switch (p.result.cause) {
+    case FailureCause::runaway_speed: return "runaway";
+    case FailureCause::newton: return "newton";
+    case FailureCause::other: break;
+  }
   return to_string(p.result.outcome);
 }
 

@@ -1,6 +1,6 @@
 // The stability experiment: per integrator at fixed steps ×
 // model × stretch-modulus multiplier, the largest step that stays bounded over
-// the scene's duration (bisection on log dt, experiments/driver/sweep.h) and
+// the scene's duration (bisection on log dt, experiments/driver/stability_bisection.h) and
 // the failure mode just above it. "Bounded" = outcome ok and max node speed
 // below speed_bound at every accepted step. Writes into out_dir:
 //   stability.csv         one row per (model, integrator, multiplier)
@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/driver/sweep.h"
+#include "experiments/driver/stability_bisection.h"
 #include "models/scene/scene.h"
 
 namespace wl {

@@ -1,7 +1,7 @@
 // The work-precision experiment: per model and integrator a
 // ladder of tolerances (error-controlled methods) or step sizes (fixed-step
 // methods), each run's error against the cached IDA reference
-// (experiments/driver/sweep.h) and its CPU time. Writes into out_dir:
+// (experiments/driver/reference_cache.h) and its CPU time. Writes into out_dir:
 //   work_precision.csv   one row per run (columns: see kWorkPrecisionColumns)
 //   work_precision.json  scene file and text, parameters, references, git revision, machine, timing
 // with progress on stderr.
@@ -11,7 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "experiments/driver/sweep.h"
+#include "experiments/driver/reference_cache.h"
+#include "experiments/driver/trajectory_error.h"
 #include "models/scene/scene.h"
 
 namespace wl {

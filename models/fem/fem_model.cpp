@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "models/common/handle_spring.h"
 #include "models/common/wind.h"
 #include "models/fem/deformation_gradient.h"
 #include "models/fem/terms/border_stretch.h"
@@ -11,7 +12,6 @@
 #include "models/fem/terms/lumped_mass.h"
 #include "models/fem/terms/nodal_gravity.h"
 #include "models/fem/terms/warp_weft_stretch.h"
-#include "models/yarn/terms/handle_spring.h"
 
 namespace wl {
 namespace {

@@ -4,7 +4,7 @@
 //   stretch  → WarpWeftStretchTerm       bending → HingeBendingTerm (interior edges)
 //   shear    → InPlaneShearTerm (lock)   gravity → NodalGravityTerm
 //   wind     → WindTerm (models/common, as the yarn model, per triangle)
-//   handles  → HandleSpringTerm (models/yarn/terms) at the handle's vertex
+//   handles  → HandleSpringTerm (models/common) at the handle's vertex
 // The lumped mass (LumpedMassTerm) is always present: the FEM has no other
 // inertia, so terms.inertia does not apply; mass is constant.
 // Pins and handles (crossing (i, j)) map to the vertex at material (iL, jL).

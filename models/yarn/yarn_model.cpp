@@ -5,13 +5,13 @@
 #include <optional>
 #include <sstream>
 
+#include "models/common/handle_spring.h"
 #include "models/common/wind.h"
 #include "models/scene/parameter_keys.h"
 #include "models/yarn/terms/bending.h"
 #include "models/yarn/terms/friction_cirio.h"
 #include "models/yarn/terms/friction_gong.h"
 #include "models/yarn/terms/gravity.h"
-#include "models/yarn/terms/handle_spring.h"
 #include "models/yarn/terms/parallel_contact.h"
 #include "models/yarn/terms/segment_inertia.h"
 #include "models/yarn/terms/shear_cirio.h"

@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "experiments/driver/fidelity.h"
-#include "experiments/driver/sweep.h"
+#include "experiments/driver/recorded_run.h"
 #include "models/model_factory.h"
 
 namespace wl {

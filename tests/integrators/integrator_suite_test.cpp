@@ -30,6 +30,7 @@ std::unique_ptr<test::SpringChain> make_chain(double k = 1.0) {
 
 struct RunResult {
   StepResult result;
+  double t = 0.0;
   Vec q, v;
   IntegratorStats stats;
   long callbacks = 0;
@@ -42,6 +43,7 @@ RunResult run(const std::string& name, Model& model, double t_end, IntegratorOpt
   integ->initialize(model, 0.0, model.initial_q(), model.initial_v(), opt);
   for (int k = 1; k <= outputs && r.result.outcome == Outcome::ok; ++k)
     r.result = integ->advance_to(t_end * k / outputs);
+  r.t = integ->t();
   r.q = integ->q();
   r.v = integ->v();
   r.stats = integ->stats();
@@ -201,6 +203,35 @@ TEST_P(IntegratorSuite, LibraryFailureCarriesTheLibraryFlag) {
   EXPECT_TRUE(r.result.library_flag_name.starts_with("ARK_") || r.result.library_flag_name.starts_with("IDA_"))
       << r.result.library_flag_name;
   EXPECT_NE(r.result.message.find(r.result.library_flag_name), std::string::npos) << r.result.message;
+}
+
+TEST_P(IntegratorSuite, RunawayIsAStructuredCauseAndTheStepIsNotAccepted) {
+  auto chain = make_chain();  // starts at 0.5 m/s
+  IntegratorOptions opt;
+  opt.dt = 0.01;
+  opt.runaway_speed = 0.1;
+  auto r = run(GetParam(), *chain, 1.0, opt);
+  EXPECT_EQ(r.result.outcome, Outcome::diverged) << r.result.message;
+  EXPECT_EQ(r.result.cause, FailureCause::runaway_speed) << r.result.message;
+  EXPECT_EQ(r.result.library_flag, 0);
+  // The step that failed the check is not accepted: no time, count or callback.
+  EXPECT_EQ(r.t, 0.0);
+  EXPECT_EQ(r.stats.steps, 0);
+  EXPECT_EQ(r.callbacks, 0);
+}
+
+TEST(BackwardEulerNewton, NonConvergenceIsAStructuredCause) {
+  test::VariableMassOscillator osc(1.0, 2.0, 1.0, 0.8, 0.0);  // nonlinear: one iteration does not converge
+  IntegratorOptions opt;
+  opt.dt = 0.01;
+  opt.newton_max_iters = 1;
+  opt.newton_tol = 1e-15;
+  auto r = run("be-newton", osc, 0.1, opt);
+  EXPECT_EQ(r.result.outcome, Outcome::diverged) << r.result.message;
+  EXPECT_EQ(r.result.cause, FailureCause::newton) << r.result.message;
+  opt.newton_max_iters = 20;
+  opt.newton_tol = 1e-8;
+  EXPECT_EQ(run("be-newton", osc, 0.1, opt).result.outcome, Outcome::ok);
 }
 
 TEST_P(IntegratorSuite, PinnedDofStaysFixedAndStatsAreCounted) {

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Installs weavelab's Debian packages when missing (as root; otherwise prints
 # the command to run), then configures and builds Release into build/.
-# Used by experiments/run_default.sh and tests/run_tests.sh.
+# WEAVELAB_CMAKE_ARGS (default empty) holds extra arguments for the configure
+# step, split at whitespace, e.g. WEAVELAB_CMAKE_ARGS=-DWEAVELAB_STRICT_WARNINGS=ON;
+# like every -D option they stay in build/CMakeCache.txt for later runs.
+# Used by tests/run_tests.sh and the experiment scripts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,5 +28,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   fi
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+read -r -a extra_cmake_args <<<"${WEAVELAB_CMAKE_ARGS:-}"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${extra_cmake_args[@]}" >/dev/null
 cmake --build build -j"$(nproc)"

@@ -1,7 +1,7 @@
 // HandleSpringTerm: FD check, and the force pulls the point toward its anchor.
 #include <gtest/gtest.h>
 
-#include "models/yarn/terms/handle_spring.h"
+#include "models/common/handle_spring.h"
 #include "tests/support/fd_check.h"
 
 namespace wl {

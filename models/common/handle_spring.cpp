@@ -1,4 +1,4 @@
-#include "models/yarn/terms/handle_spring.h"
+#include "models/common/handle_spring.h"
 
 #include <cmath>
 #include <sstream>
