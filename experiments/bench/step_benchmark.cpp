@@ -39,6 +39,19 @@ int main(int argc, char** argv) {
   if (scenes.empty())
     scenes = {"experiments/scenes/hanging_wind.toml", "experiments/scenes/hanging_wind_65.toml",
               "experiments/scenes/hanging_wind_129.toml"};
+  // Bad input is refused (exit 2) before anything is printed or timed.
+  std::vector<wl::Scene> loaded;
+  std::vector<wl::LinearSolverMethod> methods;
+  try {
+    for (const auto& s : scenes) loaded.push_back(wl::load_scene(s));
+    for (const auto& solver : solvers) methods.push_back(wl::parse_linear_solver(solver));
+  } catch (const wl::SceneError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "--linear-solvers: %s\n", e.what());
+    return 2;
+  }
   std::printf(
       "model %s, integrator %s; times in ms, medians over the timed steps (step_mean: mean)\n"
       "umfpack = factor+solve of the step matrix A with UMFPACK LU (the reference);\n"
@@ -47,15 +60,16 @@ int main(int argc, char** argv) {
   std::printf("%-40s %-8s %7s %9s %9s %9s %9s %9s %9s %7s %7s %6s %6s %7s  %s\n", "scene", "solver", "dofs", "nnz",
               "step_mean", "step", "umfpack", "chol(S)", "assembly", "/umfp", "/chol", "fact", "krylov", "peak_MB",
               "chosen");
-  for (const auto& s : scenes) {
-    for (const auto& solver : solvers) {
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    const std::string& s = scenes[k];
+    const wl::Scene& scene = loaded[k];
+    for (size_t m = 0; m < solvers.size(); ++m) {
+      const std::string& solver = solvers[m];
       try {
-        const wl::Scene scene = wl::load_scene(s);
         // Fewer timed steps where one factorization takes seconds.
         const int n = scene.nodes_u() * scene.nodes_v();
         const int steps = steps_override > 0 ? steps_override : n < 1000 ? 100 : n < 10000 ? 20 : 8;
-        const wl::bench::Figures f =
-            wl::bench::measure(scene, model, integrator, 3, steps, true, wl::parse_linear_solver(solver));
+        const wl::bench::Figures f = wl::bench::measure(scene, model, integrator, 3, steps, true, methods[m]);
         std::printf("%-40s %-8s %7d %9ld %9.3f %9.3f %9.3f %9.3f %9.3f %7.2f %7.2f %6.2f %6.1f %7.0f  %s\n", s.c_str(),
                     solver.c_str(), f.dofs, f.nnz, f.step.mean_wall_ms(), f.step.wall_ms(), f.factor_solve.wall_ms(),
                     f.cholmod_reference.wall_ms(), f.assembly.wall_ms(), f.step.wall_ms() / f.factor_solve.wall_ms(),
