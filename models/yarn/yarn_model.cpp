@@ -36,7 +36,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   num_dofs_ = grid_.num_dofs();
   constants_ = grid_.constants();
   set_rest_state();
-  set_yarn_stiffness();
+  set_yarn_constants();
   build_segments();
   const TermSwitches& on = scene.terms;
   const ContactParams& c = scene.contact;
@@ -73,7 +73,7 @@ void YarnModel::set_rest_state() {
 }
 
 // Per-yarn constants: warp j, weft i (k_s = Y·πR², k_b = B·πR², docs/models.md §3.2, §3.3).
-void YarnModel::set_yarn_stiffness() {
+void YarnModel::set_yarn_constants() {
   const double area = cross_section();
   auto fill = [&](YarnConstants& yarns, int count, auto type_of) {
     for (int k = 0; k < count; ++k) {

@@ -48,7 +48,7 @@ class YarnModel : public TermModel {
 
   // Construction, one step per idea; each add_* builds one term when the scene turns it on.
   void set_rest_state();
-  void set_yarn_stiffness();
+  void set_yarn_constants();
   void build_segments();
   void add_inertia();
   void add_stretch();
