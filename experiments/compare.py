@@ -9,7 +9,8 @@ continuum mesh with "uv": material coordinates in metres) is compared with run
 B's surface at the same material point: B carries rest material coordinates
 "uv" and triangles; the triangle holding (u, v) in the UV plane is found
 (points outside B's UV domain use the nearest triangle, barycentrics clamped)
-and B's positions are interpolated barycentrically.
+and B's positions are interpolated barycentrically. Two runs of the same yarn
+model (B without "uv", the same number of points) are paired point by point.
 
 CSV columns: time_s, rms_distance_m, max_distance_m, step_time_ratio_B_over_A
 (median "step_wall_s" of B over that of A, without the initial-state row;
@@ -195,8 +196,11 @@ def _locator_for(uv, triangles):
 
 def frame_distance(mesh_a, mesh_b, label_a="A", label_b="B"):
     """Distances (per point of A) between A's points and B's surface at A's material coordinates."""
-    uv_a = wio.material_coordinates(mesh_a, label_a)
     x_a = np.asarray(mesh_a.points, float)[:, :3]
+    if "uv" not in mesh_b.point_data and len(mesh_b.points) == len(x_a):
+        # Two runs of the same model (no surface to interpolate): points paired by index.
+        return np.linalg.norm(x_a - np.asarray(mesh_b.points, float)[:, :3], axis=1)
+    uv_a = wio.material_coordinates(mesh_a, label_a)
     if "uv" not in mesh_b.point_data:
         raise wio.RunError(f"{label_b}: run B needs point data 'uv' (rest material coordinates) and triangles")
     uv_b = wio.material_coordinates(mesh_b, label_b)

@@ -22,6 +22,7 @@ class BackwardEuler : public Integrator {
     return {.fixed_step_order = 1,
             .state_dependent_mass = true,
             .sensitivities = true,
+            .replays_steps = true,
             .energy = EnergyBehaviour::dissipative};
   }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;

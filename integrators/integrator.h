@@ -97,6 +97,10 @@ struct IntegratorCapabilities {
   bool explicit_method = false;       // no linear solves with the Jacobian; step bounded by stability
   bool state_dependent_mass = false;  // integrates models whose M depends on q
   bool sensitivities = false;         // carries forward parameter sensitivities
+  // A one-step method that can retake a recorded step sequence in fixed-step
+  // mode (advance_to each step end with dt ≥ the step): its global error is
+  // estimated by halving every recorded step (experiments/driver/time_error.h).
+  bool replays_steps = false;
   EnergyBehaviour energy = EnergyBehaviour::dissipative;
 };
 

@@ -5,17 +5,19 @@
 #include "integrators/backward_euler.h"
 #include "integrators/ida_integrator.h"
 #include "integrators/integrator.h"
+#include "integrators/sdirk2.h"
 #include "integrators/symplectic_euler.h"
 
 namespace wl {
 
 std::vector<std::string> integrator_names() {
-  return {"be-linear", "be-newton", "ida", "arkode-erk", "arkode-dirk", "arkode-imex", "symplectic"};
+  return {"be-linear", "be-newton", "sdirk2", "ida", "arkode-erk", "arkode-dirk", "arkode-imex", "symplectic"};
 }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name) {
   if (name == "be-linear") return std::make_unique<BackwardEuler>(BackwardEuler::Variant::linear);
   if (name == "be-newton") return std::make_unique<BackwardEuler>(BackwardEuler::Variant::newton);
+  if (name == "sdirk2") return std::make_unique<Sdirk2>();
   if (name == "ida") return std::make_unique<IdaIntegrator>();
   if (name == "arkode-erk") return std::make_unique<ArkodeIntegrator>(ArkodeIntegrator::Variant::erk);
   if (name == "arkode-dirk") return std::make_unique<ArkodeIntegrator>(ArkodeIntegrator::Variant::dirk);

@@ -19,6 +19,7 @@ class SymplecticEuler : public Integrator {
     return {.fixed_step_order = 1,
             .explicit_method = true,
             .state_dependent_mass = true,
+            .replays_steps = true,
             .energy = EnergyBehaviour::bounded};
   }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;

@@ -121,6 +121,13 @@ int main(int argc, char** argv) {
                 "Adaptive steps with error control (overrides the scene; --dt is the first step)");
   run->add_option("--rtol", rtol, "Relative tolerance of adaptive steps (implies --adaptive; atol = 1e-3 rtol m)");
   run->add_flag("--quiet", quiet, "No progress on stderr");
+  bool error_estimate = false;
+  run->add_flag("--error-estimate", error_estimate,
+                "Estimate the run's time error per frame with a second run (summary.json: time_error)");
+  double accuracy = 0;
+  run->add_option("--accuracy", accuracy,
+                  "Time error target [m], mean over frames of the RMS over nodes: chooses the integrator and "
+                  "tolerance (no --dt, --rtol, --adaptive or --integrator beside it)");
   std::string fem_params;
   run->add_option("--fem-params", fem_params,
                   "FEM parameter file (TOML, as written by `calibrate`); replaces the scene's parameter_file");
@@ -398,6 +405,8 @@ int main(int argc, char** argv) {
     if (run->count("--output-interval")) ov.output_interval_s = output_interval;
     if (run->count("--rtol")) ov.rtol = rtol;
     ov.adaptive = adaptive;
+    ov.error_estimate = error_estimate;
+    if (run->count("--accuracy")) ov.accuracy_m = accuracy;
     if (run->count("--fem-params")) ov.fem_parameter_file = fem_params;
     wl::apply_run_overrides(scene, ov, opt.overrides);  // every rule before anything is written
     opt.out_dir =
@@ -415,6 +424,12 @@ int main(int argc, char** argv) {
                 << "' at t = " << rep.end_time << " s: " << rep.result.message << " (summary in "
                 << opt.out_dir.string() << ")\n";
       return rep.result.outcome == wl::Outcome::not_offered ? 2 : 1;
+    }
+    if (rep.accuracy && !rep.accuracy->reached) {
+      std::cerr << "weavelab: the time error target " << rep.accuracy->target_m << " m was not reached in "
+                << rep.accuracy->trials.size() << " trials; the run used the last one (summary in "
+                << opt.out_dir.string() << ")\n";
+      return 1;
     }
     return 0;
   } catch (const wl::SceneError& e) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <stdexcept>
+#include <utility>
 
 #include "models/model_factory.h"
 
@@ -24,10 +26,22 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
   auto integrator = make_integrator(integrator_name);
   IntegratorOptions opt = options;
   opt.runaway_speed = std::min(opt.runaway_speed, record.speed_bound);
+  std::vector<double> points;  // the times advance_to is called with
+  const std::vector<double> times = output_times(scene);
+  if (record.schedule.empty()) {
+    points = times;
+  } else {
+    if (!integrator->capabilities().replays_steps)
+      throw std::invalid_argument("integrator '" + integrator_name + "' cannot replay a step sequence");
+    points = record.schedule;
+    double widest = 0.0, t_prev = 0.0;
+    for (double t : points) widest = std::max(widest, t - std::exchange(t_prev, t));
+    opt.adaptive = false;
+    opt.dt = widest * (1.0 + 1e-9);
+  }
 
   RecordedRun run;
   run.dofs = model->num_dofs();
-  const std::vector<double> times = output_times(scene);
   const int nodes = static_cast<int>(model->frame(0.0, model->initial_q(), model->initial_v()).points.rows());
   run.trajectory.positions.resize(3 * nodes, static_cast<Eigen::Index>(times.size()));
 
@@ -44,6 +58,7 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
   };
 
   integrator->on_step = [&](const StepRecord& r) {
+    if (record.step_ends) run.step_ends.push_back(r.t);
     const double s = model->max_node_speed(integrator->v());
     run.max_node_speed = std::max(run.max_node_speed, std::isfinite(s) ? s : std::numeric_limits<double>::infinity());
     if (record.progress) {
@@ -62,7 +77,8 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
   if (record.energies)
     run.initial_energy_J = kinetic_energy(*model, 0.0, model->initial_q(), model->initial_v(), scratch) +
                            model->potential_energy(model->initial_q());
-  for (double t_out : times) {
+  size_t next_output = 0;
+  for (double t_out : points) {
     timed([&] { run.result = integrator->advance_to(t_out); });
     if (run.result.outcome == Outcome::ok && run.max_node_speed > record.speed_bound)
       run.result = {Outcome::diverged,
@@ -70,6 +86,9 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
                         std::to_string(record.speed_bound) + " m/s",
                     FailureCause::runaway_speed};
     if (run.result.outcome != Outcome::ok) break;
+    if (next_output == times.size() || std::abs(t_out - times[next_output]) > 1e-9 * std::max(opt.dt, 1e-12))
+      continue;  // a replayed step end between two output times
+    t_out = times[next_output++];
     const Frame f = model->frame(integrator->t(), integrator->q(), integrator->v());
     run.trajectory.times.push_back(t_out);
     run.trajectory.positions.col(reached) = Eigen::Map<const Eigen::VectorXd>(f.points.data(), 3 * nodes);

@@ -42,6 +42,7 @@ struct RecordedRun {
   // RecordOptions::energies (outside the timed sections) [J].
   std::vector<double> kinetic_J, potential_J;
   double initial_energy_J = 0.0;  // T + V at t = 0, when RecordOptions::energies [J]
+  std::vector<double> step_ends;  // the time after each accepted step, when RecordOptions::step_ends [s]
 };
 
 struct RecordOptions {
@@ -52,7 +53,12 @@ struct RecordOptions {
   std::string label;      // prefix of the progress lines
   // Called with every recorded output frame (after the trajectory column is stored).
   std::function<void(const Frame&)> on_frame;
-  bool energies = false;  // fill RecordedRun::kinetic_J and potential_J
+  bool energies = false;   // fill RecordedRun::kinetic_J and potential_J
+  bool step_ends = false;  // fill RecordedRun::step_ends
+  // Step ends to take one fixed step each, in increasing order and holding every
+  // output time (a replay of a recorded step sequence; the integrator must
+  // declare replays_steps). Empty: the integrator chooses its steps.
+  std::vector<double> schedule;
 };
 
 // Runs `scene` with `model_name` ("yarn", "fem") and `integrator_name` to the

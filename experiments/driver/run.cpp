@@ -64,8 +64,22 @@ StepResult interrupted_result() {
 
 }  // namespace
 
-RunReport run_scene(const Scene& scene, const RunOptions& options) {
-  check_run_memory(scene, options.model);
+RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
+  check_run_memory(scene_in, options.model);
+  std::optional<AccuracyChoice> accuracy;
+  Scene scene = scene_in;
+  if (scene.accuracy_m > 0.0) {
+    (void)make_model(scene, options.model);  // a model the scene cannot build fails before the trials
+    if (options.progress)
+      std::fprintf(stderr, "weavelab: choosing the integrator and tolerance for a time error of %g m\n",
+                   scene.accuracy_m);
+    accuracy = choose_for_accuracy(scene, options.model, scene.accuracy_m, options.progress);
+    scene.integrator = accuracy->integrator;
+    scene.adaptive = true;
+    scene.rtol = accuracy->rtol;
+    scene.atol = accuracy->atol;
+    scene.error_estimate = false;  // the chosen trial's estimate is this run's (the same steps)
+  }
   auto model = make_model(scene, options.model);
   check_linear_solver(scene, *model, options.overrides);
   auto integrator = make_integrator(scene.integrator);
@@ -86,6 +100,19 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
                  options.out_dir.string().c_str());
 
   Progress progress(options.progress, scene.duration_s);
+  RecordedRun record;  // what the time error estimate needs: step ends and node positions at the frames
+  auto keep_frame = [&](const Frame& f) {
+    if (!scene.error_estimate || f.time == 0.0) return;
+    const Eigen::Index rows = static_cast<Eigen::Index>(f.points.size());
+    record.trajectory.positions.conservativeResize(rows, record.trajectory.positions.cols() + 1);
+    record.trajectory.positions.col(record.trajectory.positions.cols() - 1) =
+        Eigen::Map<const Eigen::VectorXd>(f.points.data(), rows);
+    record.trajectory.times.push_back(f.time);
+  };
+  auto add_frame = [&](Frame f) {
+    keep_frame(f);
+    series.add(f);
+  };
   integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
   Evaluation scratch;
   auto metrics_row = [&](double t, int iters, double wall) {
@@ -96,13 +123,14 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   };
   integrator->on_step = [&](const StepRecord& r) {
     metrics_row(r.t, r.nonlinear_iters, r.wall_s);
+    if (scene.error_estimate) record.step_ends.push_back(r.t);
     progress.update(r.t, integrator->stats().steps);
     if (interrupt_signal()) throw Interrupted{};
   };
 
   RunReport rep;
   metrics_row(0.0, 0, 0.0);
-  series.add(model->frame(0.0, integrator->q(), integrator->v()));
+  add_frame(model->frame(0.0, integrator->q(), integrator->v()));
   rep.frames = 1;
   const int outputs = static_cast<int>(std::llround(scene.duration_s / scene.output_interval_s));
   auto advance = [&](double t_out) {
@@ -117,13 +145,13 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
     const double t_out = std::min(scene.duration_s, k * scene.output_interval_s);
     rep.result = advance(t_out);
     if (rep.result.outcome != Outcome::ok) break;
-    series.add(model->frame(integrator->t(), integrator->q(), integrator->v()));
+    add_frame(model->frame(integrator->t(), integrator->q(), integrator->v()));
     ++rep.frames;
   }
   if (rep.result.outcome == Outcome::ok && integrator->t() < scene.duration_s - 1e-12) {
     rep.result = advance(scene.duration_s);
     if (rep.result.outcome == Outcome::ok) {
-      series.add(model->frame(integrator->t(), integrator->q(), integrator->v()));
+      add_frame(model->frame(integrator->t(), integrator->q(), integrator->v()));
       ++rep.frames;
     }
   }
@@ -131,6 +159,25 @@ RunReport run_scene(const Scene& scene, const RunOptions& options) {
   metrics.commit();
   rep.stats = integrator->stats();
   rep.end_time = integrator->t();
+  rep.accuracy = std::move(accuracy);
+  if (rep.accuracy) rep.time_error = rep.accuracy->estimate;
+  if (scene.error_estimate && rep.result.outcome == Outcome::ok) {
+    if (options.progress) std::fprintf(stderr, "weavelab: estimating the time error (a second run)\n");
+    record.stats = rep.stats;
+    try {
+      rep.time_error = estimate_time_error(scene, options.model, scene.integrator, iopt, record, options.progress);
+    } catch (const Interrupted&) {
+      rep.result = interrupted_result();
+    }
+  }
+  if (rep.time_error && options.progress) {
+    if (rep.time_error->ok())
+      std::fprintf(stderr, "weavelab: time error (%s): mean RMS %.3g m, max %.3g m\n", rep.time_error->method.c_str(),
+                   rep.time_error->mean_rms, rep.time_error->max_max);
+    else
+      std::fprintf(stderr, "weavelab: no time error estimate: the second run ended %s: %s\n",
+                   to_string(rep.time_error->second_run.outcome), rep.time_error->second_run.message.c_str());
+  }
   write_run_summary(options.out_dir / "summary.json", scene, options, *model, *integrator, rep);
   return rep;
 }

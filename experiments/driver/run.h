@@ -5,8 +5,11 @@
 #pragma once
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 
+#include "experiments/driver/accuracy.h"
+#include "experiments/driver/time_error.h"
 #include "integrators/integrator.h"
 #include "models/scene/scene.h"
 
@@ -24,8 +27,14 @@ struct RunReport {
   IntegratorStats stats;
   int frames = 0;
   double end_time = 0.0;
+  // Scene key time.error_estimate (--error-estimate): the estimate after a run that ended ok.
+  std::optional<TimeErrorEstimate> time_error;
+  // Scene key time.accuracy_m (--accuracy): the choice made before the run.
+  std::optional<AccuracyChoice> accuracy;
 };
 
+// With time.accuracy_m set, the integrator and tolerance are chosen first
+// (choose_for_accuracy, runs in memory) and the written run uses them.
 RunReport run_scene(const Scene& scene, const RunOptions& options);
 
 }  // namespace wl

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "experiments/driver/memory_estimate.h"
 #include "integrators/integrator.h"
@@ -104,6 +106,29 @@ void check_run_memory(const Scene& scene, const std::string& model_name) {
              " DoFs (32-bit sparse pattern); the " + model_name + " model has " + std::to_string(e.dofs));
 }
 
+void fit_scene_times(Scene& scene, const std::map<std::string, std::string>& record) {
+  auto notice = [](const std::string& what) { std::fprintf(stderr, "weavelab: note: %s\n", what.c_str()); };
+  auto usable = [](double x) { return std::isfinite(x) && x > 0.0; };
+  const bool duration = record.count("duration_s") && usable(scene.duration_s);
+  const bool dt = record.count("dt_s") && usable(scene.dt_s), interval = record.count("output_interval_s");
+  if (duration && !dt && scene.dt_s > scene.duration_s) {
+    notice("--duration " + shortest(scene.duration_s) + " s is shorter than the scene's step; the step is " +
+           shortest(scene.duration_s) + " s (was " + shortest(scene.dt_s) + " s)");
+    scene.dt_s = scene.duration_s;
+  }
+  if (duration && !interval && scene.output_interval_s > scene.duration_s) {
+    notice("--duration " + shortest(scene.duration_s) +
+           " s is shorter than the scene's output interval; frames every " + shortest(scene.duration_s) + " s (was " +
+           shortest(scene.output_interval_s) + " s)");
+    scene.output_interval_s = scene.duration_s;
+  }
+  if (dt && !interval && scene.dt_s > scene.output_interval_s && scene.dt_s <= scene.duration_s) {
+    notice("--dt " + shortest(scene.dt_s) + " s is longer than the scene's output interval; frames every " +
+           shortest(scene.dt_s) + " s (was " + shortest(scene.output_interval_s) + " s)");
+    scene.output_interval_s = scene.dt_s;
+  }
+}
+
 void apply_run_overrides(Scene& scene, const RunOverrides& o, std::map<std::string, std::string>& record) {
   if (o.integrator) {
     scene.integrator = *o.integrator;
@@ -144,12 +169,31 @@ void apply_run_overrides(Scene& scene, const RunOverrides& o, std::map<std::stri
     record["fem.parameter_file"] = path;
     (void)fem_material(scene);  // the file's own errors: FemParameterError with its line
   }
+  if (o.error_estimate) {
+    scene.error_estimate = true;
+    record["error_estimate"] = "true";
+  }
+  if (o.accuracy_m) {
+    const std::string value = shortest(*o.accuracy_m);
+    if (!(std::isfinite(*o.accuracy_m) && *o.accuracy_m > 0.0))
+      throw SettingError("--accuracy", value, "a finite number > 0 (m)");
+    for (const auto& [key, option] : {std::pair{"dt_s", "--dt"}, std::pair{"rtol", "--rtol"},
+                                      std::pair{"adaptive", "--adaptive"}, std::pair{"integrator", "--integrator"}})
+      if (record.count(key))
+        throw SettingError(
+            "--accuracy", value + " with " + option,
+            "no " + std::string(option) + " beside it: --accuracy chooses the integrator, its step and tolerance");
+    scene.accuracy_m = *o.accuracy_m;
+    record["accuracy_m"] = value;
+  }
+  fit_scene_times(scene, record);
   check_run_settings(scene, record);
 }
 
 void apply_duration_override(Scene& scene, double duration_s, std::map<std::string, std::string>& record) {
   scene.duration_s = duration_s;
   record["duration_s"] = shortest(duration_s);
+  fit_scene_times(scene, record);
   const auto bad = time_settings_violation(scene, [&](const std::string& key) {
     return key == "time.duration_s" ? 2 : scene.key_lines.count(key) ? 1 : 0;
   });

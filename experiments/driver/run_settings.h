@@ -28,11 +28,18 @@ struct RunOverrides {
   std::optional<double> dt_s, duration_s, output_interval_s, rtol;  // --rtol implies adaptive, atol = 1e-3 rtol
   bool adaptive = false;
   std::optional<std::string> fem_parameter_file;  // --fem-params: replaces [fem] parameter_file
+  bool error_estimate = false;                    // --error-estimate: time.error_estimate = true
+  std::optional<double> accuracy_m;               // --accuracy: time.accuracy_m
 };
 
 // Applies the overrides to `scene`, records them in `record` (scene key →
 // value, as the summary lists them) and checks the result with check_run_settings;
 // a parameter file must exist (SettingError) and parse (FemParameterError, file:line).
+// A --duration (or --dt) that leaves the scene's output interval (or step)
+// out of order is forgiven: the scene's value follows it, with a notice on
+// stderr (fit_scene_times); two command-line values that contradict each
+// other stay an error. --accuracy beside --dt, --rtol, --adaptive or
+// --integrator is an error: it chooses those itself.
 void apply_run_overrides(Scene& scene, const RunOverrides& overrides, std::map<std::string, std::string>& record);
 
 // Checks a scene's run settings: the time rules and the integrator name. A
@@ -48,6 +55,11 @@ void check_linear_solver(const Scene& scene, const Model& model, const std::map<
 // estimate (memory_estimate.h) exceeds the memory available, before anything
 // is allocated; the message gives the estimate.
 void check_run_memory(const Scene& scene, const std::string& model_name);
+
+// The forgiving rule of apply_run_overrides: a finite, positive --duration
+// (--dt) from the command line (`record`) pulls the scene's own step and
+// output interval into order with it, with a notice on stderr.
+void fit_scene_times(Scene& scene, const std::map<std::string, std::string>& record);
 
 // --duration of the experiments: the same rules, recorded as "duration_s".
 void apply_duration_override(Scene& scene, double duration_s, std::map<std::string, std::string>& record);

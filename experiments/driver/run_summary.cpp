@@ -17,10 +17,11 @@ void write_run_summary(const std::filesystem::path& path, const Scene& scene, co
   j.set("model", m);
   Json in = Json::object();
   in.set("name", integrator.name());
-  in.set("adaptive", scene.adaptive);
-  if (scene.adaptive) {
-    in.set("rtol", scene.rtol);
-    in.set("atol", scene.atol);
+  const bool adaptive = scene.adaptive || report.accuracy;
+  in.set("adaptive", adaptive);
+  if (adaptive) {
+    in.set("rtol", report.accuracy ? report.accuracy->rtol : scene.rtol);
+    in.set("atol", report.accuracy ? report.accuracy->atol : scene.atol);
   }
   j.set("integrator", in);
   j.set("statistics", statistics_json(report.stats));
@@ -36,6 +37,8 @@ void write_run_summary(const std::filesystem::path& path, const Scene& scene, co
   out.set("end_time_s", report.end_time);
   out.set("frames", report.frames);
   j.set("result", out);
+  if (report.time_error) j.set("time_error", report.time_error->to_json());
+  if (report.accuracy) j.set("accuracy", report.accuracy->to_json());
   add_provenance(j);
   j.set("finished_utc", utc_now());
   write_file_atomically(path, j.dump());

@@ -104,6 +104,11 @@ struct Scene {
   std::string linear_solver = "auto";  // step matrix solver (integrators/sparse_solver.h); the run checks the name
   bool adaptive = false;
   double rtol = 1e-6, atol = 1e-9;
+  // Estimate the run's global time error (experiments/driver/time_error.h).
+  bool error_estimate = false;
+  // Target of the run's time error, mean over frames of the RMS over nodes [m];
+  // 0: none. When set the run chooses its integrator and tolerance (docs/models.md §7.9).
+  double accuracy_m = 0.0;
 
   TermSwitches terms;
   FemSettings fem;

@@ -39,11 +39,36 @@ TEST(RunSettings, BadOverridesNameOptionValueAndRule) {
   add([&](RunOverrides& o) { o.dt_s = inf; }, "--dt", "inf", "finite number > 0");
   add([&](RunOverrides& o) { o.dt_s = nan; }, "--dt", "nan", "finite number > 0");
   add([&](RunOverrides& o) { o.dt_s = -1e-3; }, "--dt", "-0.001", "finite number > 0");
-  add([&](RunOverrides& o) { o.dt_s = 0.02; }, "--dt", "0.02", "≤ time.output_interval_s");
+  add(
+      [&](RunOverrides& o) {
+        o.dt_s = 0.02;
+        o.output_interval_s = 0.01;  // two command-line values in contradiction stay an error
+      },
+      "--output-interval", "0.01", "≥ time.dt_s");
   add([&](RunOverrides& o) { o.dt_s = 1e-12; }, "--dt", "1e-12", "at most");
   add([&](RunOverrides& o) { o.duration_s = nan; }, "--duration", "nan", "finite number > 0");
   add([&](RunOverrides& o) { o.duration_s = inf; }, "--duration", "inf", "finite number > 0");
-  add([&](RunOverrides& o) { o.duration_s = 0.005; }, "--duration", "0.005", "≥ time.output_interval_s");
+  add(
+      [&](RunOverrides& o) {
+        o.duration_s = 0.005;
+        o.output_interval_s = 0.01;
+      },
+      "--output-interval", "0.01", "≤ time.duration_s");
+  add([&](RunOverrides& o) { o.accuracy_m = 0.0; }, "--accuracy", "0", "a finite number > 0 (m)");
+  add([&](RunOverrides& o) { o.accuracy_m = nan; }, "--accuracy", "nan", "a finite number > 0 (m)");
+  add([&](RunOverrides& o) { o.accuracy_m = -1e-4; }, "--accuracy", "-1e-04", "a finite number > 0 (m)");
+  add(
+      [&](RunOverrides& o) {
+        o.accuracy_m = 1e-4;
+        o.dt_s = 1e-3;
+      },
+      "--accuracy", "1e-04 with --dt", "no --dt beside it");
+  add(
+      [&](RunOverrides& o) {
+        o.accuracy_m = 1e-4;
+        o.integrator = "ida";
+      },
+      "--accuracy", "1e-04 with --integrator", "no --integrator beside it");
   add([&](RunOverrides& o) { o.duration_s = 1e6; }, "--duration", "1000000", "at most");
   add([&](RunOverrides& o) { o.output_interval_s = 1.0; }, "--output-interval", "1", "≤ time.duration_s");
   add([&](RunOverrides& o) { o.output_interval_s = 1e-4; }, "--output-interval", "0.0001", "≥ time.dt_s");
@@ -63,6 +88,30 @@ TEST(RunSettings, BadOverridesNameOptionValueAndRule) {
     EXPECT_NE(msg.find("got " + c.value + ","), std::string::npos) << msg;
     EXPECT_NE(msg.find(c.expected), std::string::npos) << msg;
   }
+}
+
+// A --duration below the scene's output interval (or step), or a --dt above
+// its output interval, is forgiven: the scene's value follows the option.
+TEST(RunSettings, ShortRunsAndLongStepsPullTheSceneTimesAlong) {
+  std::map<std::string, std::string> record;
+  Scene s = parse_scene(kScene, "s.toml");  // dt 1 ms, frames every 10 ms
+  RunOverrides o;
+  o.duration_s = 0.002;
+  apply_run_overrides(s, o, record);
+  EXPECT_EQ(s.output_interval_s, 0.002);
+  EXPECT_EQ(s.dt_s, 0.001);
+  s = parse_scene(kScene, "s.toml");
+  o.duration_s = 0.0005;  // below the step too
+  apply_run_overrides(s, o, record);
+  EXPECT_EQ(s.output_interval_s, 0.0005);
+  EXPECT_EQ(s.dt_s, 0.0005);
+  s = parse_scene(kScene, "s.toml");
+  record.clear();
+  RunOverrides dt;
+  dt.dt_s = 0.02;
+  apply_run_overrides(s, dt, record);
+  EXPECT_EQ(s.output_interval_s, 0.02);
+  EXPECT_EQ(s.duration_s, 0.1);
 }
 
 TEST(RunSettings, GoodOverridesAreAppliedAndRecorded) {
@@ -111,9 +160,12 @@ TEST(RunSettings, ExperimentOptions) {
   Scene s = parse_scene(kScene, "s.toml");
   std::map<std::string, std::string> record;
   EXPECT_THROW(apply_duration_override(s, std::numeric_limits<double>::infinity(), record), SettingError);
-  EXPECT_THROW(apply_duration_override(s, 1e-3, record), SettingError);  // below the output interval
   EXPECT_NO_THROW(apply_duration_override(s, 0.02, record));
   EXPECT_EQ(s.duration_s, 0.02);
+  EXPECT_EQ(s.output_interval_s, 0.01);
+  EXPECT_NO_THROW(apply_duration_override(s, 1e-3, record));  // below the output interval: it follows
+  EXPECT_EQ(s.output_interval_s, 1e-3);
+  EXPECT_EQ(s.dt_s, 1e-3);
   EXPECT_THROW(positive_option("--budget", std::numeric_limits<double>::quiet_NaN()), SettingError);
   EXPECT_THROW(positive_option("--budget", 0.0), SettingError);
   EXPECT_EQ(positive_option("--budget", 3.0), 3.0);
