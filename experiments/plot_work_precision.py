@@ -27,6 +27,7 @@ import numpy as np  # noqa: E402
 STYLE = {
     "be-linear": ("#1f77b4", "o"),
     "be-newton": ("#17becf", "s"),
+    "sdirk2": ("#e377c2", "*"),
     "ida": ("#d62728", "D"),
     "arkode-erk": ("#2ca02c", "^"),
     "arkode-dirk": ("#9467bd", "v"),
@@ -93,8 +94,8 @@ def main():
     for ax, model in zip(axes[0], models):
         mine = [r for r in rows if r["model"] == model]
         missing = []
-        for integ in dict.fromkeys(r["integrator"] for r in mine):
-            runs = [r for r in mine if r["integrator"] == integ]
+        for integ, mode in dict.fromkeys((r["integrator"], r["mode"]) for r in mine):
+            runs = [r for r in mine if r["integrator"] == integ and r["mode"] == mode]
             ok = [r for r in runs if r["outcome"] == "ok" and number(r["error_rms_m"]) > 0]
             failed = [r for r in runs if r["outcome"] != "ok"]
             if not ok:
@@ -111,7 +112,16 @@ def main():
                            "slope_error_vs_" + ("rtol" if adaptive else "dt"): s_par})
             colour, marker = STYLE.get(integ, (None, "o"))
             label = f"{integ} ({'rtol' if adaptive else 'dt'} ladder, slope {s_cpu:.2f})" if len(ok) > 1 else integ
-            ax.loglog(cpu, err, marker=marker, color=colour, label=label, linewidth=1.6, markersize=6)
+            # A method with both ladders: the rtol ladder dashed.
+            style = "--" if adaptive and any(r["integrator"] == integ and r["mode"] == "fixed" for r in mine) else "-"
+            ax.loglog(cpu, err, marker=marker, color=colour, label=label, linewidth=1.6, markersize=6, linestyle=style)
+            published = meta.get("published_dt_s")
+            if published and not adaptive:
+                for c_, e_, p_ in zip(cpu, err, param):
+                    if abs(p_ - published) <= 1e-9 * published:
+                        ax.plot([c_], [e_], marker="o", markersize=14, markerfacecolor="none", color="black")
+                        ax.annotate("published step", (c_, e_), textcoords="offset points", xytext=(8, 8),
+                                    fontsize=7)
             # Label the loosest and the tightest rung.
             for i in sorted({0, len(ok) - 1}):
                 if adaptive:

@@ -119,8 +119,15 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
       res.notes.push_back(note);
       std::fprintf(stderr, "work-precision: WARNING: %s\n", note.c_str());
     }
+    // Ladders: rtol for error-controlled methods, dt for fixed-step ones, and
+    // both for the in-house error-controlled method (sdirk2).
+    std::vector<std::pair<std::string, bool>> ladders;
     for (const std::string& integ : cfg.integrators) {
-      const bool adaptive = make_integrator(integ)->capabilities().controls_error;
+      const IntegratorCapabilities cap = make_integrator(integ)->capabilities();
+      if (cap.controls_error) ladders.emplace_back(integ, true);
+      if (!cap.controls_error || (cap.replays_steps && cap.fixed_step_order > 0)) ladders.emplace_back(integ, false);
+    }
+    for (const auto& [integ, adaptive] : ladders) {
       std::vector<double> rungs;
       if (adaptive) rungs = cfg.rtols;
       else
@@ -218,6 +225,7 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
   Json j = Json::object();
   j.set("experiment", "work-precision");
   j.set("scene", scene_json(cfg.scene_path, cfg.scene_text, cfg.scene, cfg.overrides));
+  j.set("published_dt_s", cfg.scene.dt_s);  // the scene's own step, marked on the chart
   Json p = Json::object();
   p.set("models", Json(cfg.models));
   p.set("integrators", Json(cfg.integrators));

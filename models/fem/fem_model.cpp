@@ -1,10 +1,12 @@
 #include "models/fem/fem_model.h"
 
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include "models/common/handle_spring.h"
 #include "models/common/wind.h"
+#include "models/common/yarn_damper.h"
 #include "models/fem/deformation_gradient.h"
 #include "models/fem/terms/border_stretch.h"
 #include "models/fem/terms/hinge_bending.h"
@@ -120,6 +122,22 @@ void FemModel::build() {
   if (on.wind && (scene_.air_density_kg_per_m3 > 0 || scene_.wind_drag_Ns_per_m3 > 0)) {
     auto t = std::make_unique<WindTerm>(wind, scene_.air_density_kg_per_m3, scene_.wind_drag_Ns_per_m3);
     for (const auto& tri : mesh_.triangles) t->add(triangle_stencil(tri));
+    terms_.push_back(std::move(t));
+  }
+  // Yarn-internal stretch damping on the warp and weft edges (docs/models.md §3.12):
+  // an edge of length kL along the warp carries k yarns of coefficient ηπR²/(kL).
+  if (scene_.yarn_viscosity_Pa_s > 0.0) {
+    const double c = yarn_damper_coefficient(scene_.yarn_viscosity_Pa_s, scene_.radius_m, scene_.spacing_m);
+    auto t = std::make_unique<YarnDamperTerm>();
+    std::set<std::pair<int, int>> edges;
+    for (const auto& tri : mesh_.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const int a = std::min(tri[k], tri[(k + 1) % 3]), b = std::max(tri[k], tri[(k + 1) % 3]);
+        const Vec2 d = mesh_.uv[b] - mesh_.uv[a];
+        const bool along_yarn = std::abs(d.x()) <= 1e-9 * d.norm() || std::abs(d.y()) <= 1e-9 * d.norm();
+        if (along_yarn && edges.insert({a, b}).second)
+          t->add({3 * a, 3 * a + 1, 3 * a + 2, 3 * b, 3 * b + 1, 3 * b + 2}, c);
+      }
     terms_.push_back(std::move(t));
   }
   if (on.handles && !scene_.handles.empty()) {

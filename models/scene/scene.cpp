@@ -317,6 +317,11 @@ void read_loads(TableReader& top, Scene& s) {
     w->read_number("drag_Ns_per_m3", s.wind_drag_Ns_per_m3, "a number ≥ 0 (N·s/m³)", non_negative);
     w->finish();
   }
+  if (auto d = top.subtable("damping")) {
+    d->read_number("yarn_viscosity_Pa_s", s.yarn_viscosity_Pa_s, "a finite number ≥ 0 (Pa·s)",
+                   [](double x) { return std::isfinite(x) && x >= 0.0; });
+    d->finish();
+  }
 }
 
 void read_time(TableReader& top, Scene& s) {
@@ -390,7 +395,8 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   s.text = toml_text;
   TableReader top(src, root, "");
   // Unknown tables first: a misspelt table name is the likeliest error.
-  top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "time", "terms", "fem"});
+  top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "damping", "time",
+               "terms", "fem"});
   top.finish();
   const auto yarn_defs = read_yarn_types(top);
   read_cloth(top, s, yarn_defs);

@@ -95,6 +95,9 @@ struct Scene {
   std::array<double, 3> wind_velocity_m_per_s{0.0, 0.0, 0.0};
   double air_density_kg_per_m3 = 0.0;  // ρ_w (normal pressure)
   double wind_drag_Ns_per_m3 = 0.0;    // d_w (tangential drag per area)
+  // Yarn-internal stretch damping, a Kelvin–Voigt viscosity η (docs/models.md
+  // §3.12); 0, the sources' model, adds no term.
+  double yarn_viscosity_Pa_s = 0.0;
 
   // Time
   double duration_s = 0.5;

@@ -7,6 +7,7 @@
 
 #include "models/common/handle_spring.h"
 #include "models/common/wind.h"
+#include "models/common/yarn_damper.h"
 #include "models/scene/parameter_keys.h"
 #include "models/yarn/terms/bending.h"
 #include "models/yarn/terms/friction_cirio.h"
@@ -52,6 +53,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   if (friction) add_friction();
   if (on.wind) add_wind();
   if (on.handles) add_handles();
+  if (scene_.yarn_viscosity_Pa_s > 0.0) add_damping();
   add_pins();
   finalize();
 }
@@ -245,6 +247,22 @@ void YarnModel::add_wind() {
                 n01 = grid_.node(i, j + 1);
       tri(n00, n10, n11);
       tri(n00, n11, n01);
+    }
+  terms_.push_back(std::move(t));
+}
+
+// Yarn-internal stretch damping on every warp and weft segment (docs/models.md §3.12).
+void YarnModel::add_damping() {
+  const double c = yarn_damper_coefficient(scene_.yarn_viscosity_Pa_s, scene_.radius_m, scene_.spacing_m);
+  auto t = std::make_unique<YarnDamperTerm>();
+  auto segment = [&](int a, int b) {
+    const int xa = grid_.dofs(a).x, xb = grid_.dofs(b).x;
+    t->add({xa, xa + 1, xa + 2, xb, xb + 1, xb + 2}, c);
+  };
+  for (int j = 0; j < grid_.nv(); ++j)
+    for (int i = 0; i < grid_.nu(); ++i) {
+      if (i + 1 < grid_.nu()) segment(grid_.node(i, j), grid_.node(i + 1, j));
+      if (j + 1 < grid_.nv()) segment(grid_.node(i, j), grid_.node(i, j + 1));
     }
   terms_.push_back(std::move(t));
 }

@@ -59,6 +59,7 @@ class YarnModel : public TermModel {
   void add_friction();
   void add_wind();
   void add_handles();
+  void add_damping();
   void add_pins();
 
   std::array<int, 8> segment_stencil(const Segment& s) const;

@@ -110,6 +110,26 @@ std::string file_text(const fs::path& p) {
   return ss.str();
 }
 
+// --error-estimate and --accuracy record their estimate in the summary; a
+// --duration below the scene's output interval is forgiven with a notice.
+TEST_F(Cli, TimeErrorEstimateAndAccuracyAreRecorded) {
+  const std::string scene = std::string(WEAVELAB_SOURCE_DIR) + "/experiments/scenes/hanging_wind_frozen.toml";
+  const fs::path est = dir_ / "estimate", acc = dir_ / "accuracy";
+  Result r = run_cli("run '" + scene + "' --duration 0.004 --error-estimate --out '" + est.string() + "'", dir_);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: --duration 0.004 s is shorter than the scene's output interval"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("time error (richardson)"), std::string::npos) << r.output;
+  const std::string summary = file_text(est / "summary.json");
+  EXPECT_NE(summary.find("\"time_error\""), std::string::npos);
+  EXPECT_NE(summary.find("\"mean_rms_m\""), std::string::npos);
+  r = run_cli("run '" + scene + "' --duration 0.004 --accuracy 1e-7 --quiet --out '" + acc.string() + "'", dir_);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string chosen = file_text(acc / "summary.json");
+  EXPECT_NE(chosen.find("\"reached\": true"), std::string::npos) << chosen;
+  EXPECT_NE(chosen.find("\"name\": \"sdirk2\""), std::string::npos);
+}
+
 // README: reproducibility. Runs under different OpenMP thread counts, and with
 // OpenBLAS left to its default or set to one thread, write the same bits; the
 // summary records the thread counts in force.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "experiments/driver/accuracy.h"
 #include "experiments/driver/time_error.h"
 #include "experiments/driver/trajectory_error.h"
 #include "tests/support/test_scenes.h"
@@ -34,6 +35,26 @@ IntegratorOptions fixed(double dt) {
   return o;
 }
 
+// A 6×6 cloth in wind, 40 ms, default physics with sliding frozen.
+Scene small_cloth() {
+  Scene s = parse_scene(test::hanging_cloth_toml(6, 0.04), "cloth.toml");
+  s.sliding = false;
+  return s;
+}
+
+// Its converged motion: IDA at rtol 1e-10 (computed once per test process).
+const RecordedRun& small_cloth_reference() {
+  static const RecordedRun reference = [] {
+    IntegratorOptions tight;
+    tight.adaptive = true;
+    tight.rtol = 1e-10;
+    tight.atol = 1e-13;
+    tight.dt = 1e-6;
+    return run_recorded(small_cloth(), "yarn", "ida", tight);
+  }();
+  return reference;
+}
+
 // Free fall (every force but gravity off): backward Euler's error is exactly
 // ½ g h t at every node, linear in h, so Richardson's rule recovers it to
 // round-off; SDIRK2 integrates the parabola exactly.
@@ -56,19 +77,12 @@ TEST(TimeErrorEstimate, FreeFallIsRecoveredExactly) {
   EXPECT_LT(sd.estimate.max_max, 1e-12);
 }
 
-// A 6×6 cloth in wind, 60 ms (default physics with sliding frozen): each
-// estimate against the distance to an IDA run at rtol 1e-10. Per frame the
+// Each estimate on the small cloth against its distance to the IDA run. Per frame the
 // estimate is within a factor 2 of the true error wherever the true error is
 // well above the reference's own (1e-9 m).
 TEST(TimeErrorEstimate, WithinAFactorTwoOnASmallCloth) {
-  Scene s = parse_scene(test::hanging_cloth_toml(6, 0.06), "cloth.toml");
-  s.sliding = false;
-  IntegratorOptions tight;
-  tight.adaptive = true;
-  tight.rtol = 1e-10;
-  tight.atol = 1e-13;
-  tight.dt = 1e-6;
-  const RecordedRun reference = run_recorded(s, "yarn", "ida", tight);
+  const Scene s = small_cloth();
+  const RecordedRun& reference = small_cloth_reference();
   ASSERT_EQ(reference.result.outcome, Outcome::ok) << reference.result.message;
   IntegratorOptions adaptive;
   adaptive.adaptive = true;
@@ -91,6 +105,32 @@ TEST(TimeErrorEstimate, WithinAFactorTwoOnASmallCloth) {
     std::printf("[ time error ] %-9s %s: estimated %.3e m, true %.3e m (mean RMS), worst frame ratio %.2f\n",
                 name.c_str(), opt.adaptive ? "rtol 1e-5" : (opt.dt == 1e-3 ? "dt 1 ms" : "dt 0.5 ms"),
                 r.estimate.mean_rms, trajectory_error(r.run.trajectory, reference.trajectory).rms, worst);
+  }
+}
+
+// --accuracy on the small cloth: the chosen run's estimate meets the target,
+// and so does its distance to the IDA run.
+TEST(AccuracyChoice, ReachesItsTargetOnASmallCloth) {
+  const Scene s = small_cloth();
+  const RecordedRun& reference = small_cloth_reference();
+  ASSERT_EQ(reference.result.outcome, Outcome::ok) << reference.result.message;
+  for (double target : {1e-5, 1e-7}) {
+    const AccuracyChoice c = choose_for_accuracy(s, "yarn", target, false);
+    ASSERT_TRUE(c.reached) << "target " << target;
+    EXPECT_LE(c.estimate.mean_rms, target);
+    IntegratorOptions opt;
+    opt.adaptive = true;
+    opt.rtol = c.rtol;
+    opt.atol = c.atol;
+    opt.dt = s.dt_s;
+    const RecordedRun run = run_recorded(s, "yarn", c.integrator, opt);
+    std::vector<double> rms, max;
+    frame_distances(run.trajectory, reference.trajectory, 1.0, rms, max);
+    double mean = 0.0;
+    for (double r : rms) mean += r / double(rms.size());
+    std::printf("[ accuracy ] target %.0e m: %zu trials, rtol %.2e, estimated %.3e m, true %.3e m\n", target,
+                c.trials.size(), c.rtol, c.estimate.mean_rms, mean);
+    EXPECT_LE(mean, target);
   }
 }
 
