@@ -16,7 +16,10 @@ CSV columns: time_s, rms_distance_m, max_distance_m, step_time_ratio_B_over_A
 (median "step_wall_s" of B over that of A, without the initial-state row;
 one value for the whole run).
 --plot writes the RMS and max distance over time as PNG and SVG; --table
-prints the per-frame distances (mm) on stdout.
+prints the per-frame distances (mm) on stdout. The closing lines set the mean
+distance beside each run's estimated time error (summary.json "time_error",
+written by `weavelab run --error-estimate`) and say whether the distance
+measures the models or is within the runs' own time error.
 Missing or malformed inputs: a message on stderr and exit status 2.
 """
 import argparse
@@ -284,6 +287,41 @@ def plot(path, rows, label_a, label_b, size_m=None):
     return written
 
 
+def time_error(run):
+    """The run's estimated time error (summary.json "time_error", docs/models.md §7.8) as
+    (mean RMS, max, method), or None when the run carries no estimate."""
+    te = (wio.read_summary(run) or {}).get("time_error") or {}
+    if "mean_rms_m" not in te:
+        return None
+    return float(te["mean_rms_m"]), float(te["max_m"]), te.get("method", "?")
+
+
+def error_budget(rows, run_a, run_b):
+    """Lines that set the mean RMS distance beside each run's own time error."""
+    distance = float(np.mean([r[1] for r in rows[1:]] if len(rows) > 1 else [r[1] for r in rows]))
+    lines = [f"distance: {1e3 * distance:.4g} mm (mean over frames after t = 0 of the RMS)"]
+    errors = []
+    for label, run in (("A", run_a), ("B", run_b)):
+        te = time_error(run)
+        if te is None:
+            lines.append(f"time error of {label} ({run}): not estimated (rerun it with --error-estimate)")
+            errors.append(None)
+        else:
+            lines.append(f"time error of {label} ({run}): {1e3 * te[0]:.4g} mm mean RMS, {1e3 * te[1]:.4g} mm max "
+                         f"({te[2]})")
+            errors.append(te[0])
+    known = [e for e in errors if e is not None]
+    if len(known) < 2:
+        lines.append("budget: incomplete: the distance may be time error")
+    elif max(known) > distance:
+        lines.append("budget: a time error EXCEEDS the distance: the distance does not measure the models")
+    elif max(known) > 0.1 * distance:
+        lines.append("budget: a time error is above a tenth of the distance: the models are not resolved apart")
+    else:
+        lines.append("budget: both time errors are below a tenth of the distance")
+    return lines
+
+
 def format_table(rows):
     """The per-frame distances as a text table (mm)."""
     lines = [f"{'time (s)':>9} {'RMS (mm)':>9} {'max (mm)':>9}"]
@@ -310,6 +348,7 @@ def main(argv=None):
     worst = max(rows, key=lambda r: r[2])
     print(f"{len(rows)} frame pairs; max distance {1e3 * worst[2]:.4g} mm at t = {worst[0]:.6g} s; "
           f"step time ratio B/A = {rows[0][3]:.4g}; wrote {', '.join([args.out] + written)}")
+    print("\n".join(error_budget(rows, args.run_a, args.run_b)))
     return 0
 
 

@@ -33,6 +33,8 @@ void Sdirk2::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, c
   solver_->set_refinement_steps(0);  // the Newton iteration refines
   h_next_ = opt.dt;
   a_last_ = Vec::Zero(model.num_dofs());
+  matrix_h_ = 0.0;
+  reuse_matrix_ = false;
   q_new_ = q_;  // the error weights read the last end state
   v_new_ = v_;
 }
@@ -49,7 +51,9 @@ StepResult Sdirk2::refresh_matrix(double t, double h, const Vec& q, const Vec& v
   double* a = a_.valuePtr();
   for (int i = 0; i < nnz; ++i) a[i] = m[i] - gh * d[i] - gh2 * k[i];
   ++stats_.linear_setups;
+  matrix_h_ = 0.0;
   if (!solver_->factorize(a_)) return {Outcome::diverged, "stage matrix: " + solver_->failure(), FailureCause::newton};
+  matrix_h_ = h;
   return {};
 }
 
@@ -92,9 +96,13 @@ StepResult Sdirk2::solve_stage(double t, double h, const Vec& q_base, const Vec&
     // Below round-off (64 ε) the iteration has nothing left to correct.
     const double floor = std::max(opt_.newton_tol, 64 * std::numeric_limits<double>::epsilon());
     const bool tight = std::min(remaining, size) <= floor * (1.0 + V.lpNorm<Eigen::Infinity>());
-    // Adaptive mode: the iteration error is a small fraction of the tolerance.
+    // Adaptive mode: the iteration error of the positions, γh·remaining, is a
+    // small fraction of the tolerance.
     const bool within_tolerance = opt_.adaptive && weighted_rms(gh * (remaining / std::max(size, 1e-300)) * dV) <= 1e-2;
-    if (tight || within_tolerance) return {};
+    if (tight || within_tolerance) {
+      reuse_matrix_ = reuse_matrix_ && refreshes == 0 && it < 4;
+      return {};
+    }
     // Modified Newton stalls (rate ≥ 0.9, or slow, ≥ 0.3, after 8 iterations on
     // one matrix): refresh the Jacobian at the current iterate, at most 3 times.
     const bool known = std::isfinite(previous);
@@ -108,22 +116,34 @@ StepResult Sdirk2::solve_stage(double t, double h, const Vec& q_base, const Vec&
     }
     previous = size;
   }
+  reuse_matrix_ = false;
   return {Outcome::diverged,
           "stage Newton iteration did not converge in " + std::to_string(done) + " iterations (" +
               std::to_string(refreshes) + " Jacobian refreshes)",
           FailureCause::newton};
 }
 
+Sdirk2::Attempt Sdirk2::failed(Attempt a) {
+  reuse_matrix_ = false;  // the next attempt starts from a fresh Jacobian
+  return a;
+}
+
 Sdirk2::Attempt Sdirk2::attempt(double h) {
   Attempt a;
   const double gh = kGamma * h;
-  a.result = refresh_matrix(t_, h, q_, v_);
-  if (a.result.outcome != Outcome::ok) return a;
+  // The last step's matrix serves again while its Newton iterations converged
+  // fast, the step changed by at most 20 % and the mass is constant (the
+  // iteration matrix only steers Newton: the residual is exact).
+  if (!(reuse_matrix_ && !model_->mass_depends_on_q() && matrix_h_ > 0.0 && std::abs(h / matrix_h_ - 1.0) <= 0.2)) {
+    a.result = refresh_matrix(t_, h, q_, v_);
+    if (a.result.outcome != Outcome::ok) return a;
+  }
+  reuse_matrix_ = true;  // each stage below withdraws it if it converged slowly
   // Stage 1, started from the last step's end acceleration.
   V1_ = v_ + gh * a_last_;
   zero_fixed(V1_, fixed_);
   a.result = solve_stage(t_ + gh, h, q_, v_, V1_, a.iters);
-  if (a.result.outcome != Outcome::ok) return a;
+  if (a.result.outcome != Outcome::ok) return failed(a);
   Q1_ = q_ + gh * V1_;
   const Vec A1 = (V1_ - v_) / gh;
   // Stage 2, started from the first stage's acceleration.
@@ -131,7 +151,7 @@ Sdirk2::Attempt Sdirk2::attempt(double h) {
   qb2_ = q_ + (1.0 - kGamma) * h * V1_;
   V2_ = v_ + h * A1;
   a.result = solve_stage(t_ + h, h, qb2_, w2_, V2_, a.iters);
-  if (a.result.outcome != Outcome::ok) return a;
+  if (a.result.outcome != Outcome::ok) return failed(a);
   q_new_ = qb2_ + gh * V2_;
   v_new_ = V2_;
   if (!opt_.adaptive) return a;

@@ -4,9 +4,10 @@
 //   stage 1:  M(Q₁)(V₁ − v₀) = γh f(t₀ + γh, Q₁, V₁),                Q₁ = q₀ + γh V₁
 //   stage 2:  M(Q₂)(V₂ − v₀ − (1−γ)h A₁) = γh f(t₀ + h, Q₂, V₂),     Q₂ = q₀ + (1−γ)h V₁ + γh V₂
 //   A₁ = (V₁ − v₀)/(γh);  q₁ = Q₂, v₁ = V₂.
-// Each stage is a backward-Euler-shaped solve of step γh: one Jacobian and one
-// factorization of M − γhD − γ²h²K per step, shared by both stages (modified
-// Newton, refreshed only when it stalls). The mass is taken at the stage state,
+// Each stage is a backward-Euler-shaped solve of step γh: both stages share one
+// factorization of M − γhD − γ²h²K (modified Newton), kept across steps (for a
+// constant mass) while the iterations converge fast and the step changes by at
+// most 20 %, refreshed at the current iterate when they stall. The mass is taken at the stage state,
 // which keeps the method second order when M depends on q.
 // Error estimate (adaptive mode): the first-order embedded solution
 // b̂ = (1, 0) differs by ê = γh (V₂ − V₁, A₂ − A₁), filtered through the
@@ -49,6 +50,7 @@ class Sdirk2 : public Integrator {
   };
   // One step of size h from (t_, q_, v_) into (q_new_, v_new_).
   Attempt attempt(double h);
+  Attempt failed(Attempt a);  // a failed stage: no matrix reuse next
   // Solves the stage M(Q)(V − w) = γh f(t, Q, V), Q = q_base + γh V, for V
   // (initial guess in V) by modified Newton on the factorization in hand.
   StepResult solve_stage(double t, double h, const Vec& q_base, const Vec& w, Vec& V, int& iters);
@@ -66,8 +68,9 @@ class Sdirk2 : public Integrator {
   Evaluation jac_, res_;  // Jacobians at the matrix point; force (and mass) at Newton iterates
   SparseMatrix a_;        // M − γhD − γ²h²K
   std::unique_ptr<SparseSolver> solver_;
-  double matrix_h_ = 0.0;  // the step the factorization belongs to (0: none)
-  double h_next_ = 0.0;    // adaptive mode: the proposed next step
+  double matrix_h_ = 0.0;      // the step the factorization belongs to (0: none)
+  bool reuse_matrix_ = false;  // the last stages converged fast on it: the next step may keep it
+  double h_next_ = 0.0;        // adaptive mode: the proposed next step
   Vec q_new_, v_new_;
   Vec a_last_;  // v′ at the end of the last accepted step (the next stage's starting guess)
   // The stages of the last attempt (for sensitivities and the estimate).

@@ -212,6 +212,45 @@ TEST(CompareScript, StepTimeRatioSkipsTheInitialStateRow) {
   expect_one_millimetre(csv, 6.0 / 2.5);
 }
 
+// Two runs of the same yarn model are paired point by point, and the closing
+// lines set the distance (1 mm) beside each run's time error from its summary.
+TEST(CompareScript, SameModelRunsAndTheErrorBudget) {
+  ASSERT_TRUE(test::python_with("numpy, meshio"));
+  Runs runs;
+  const auto lower = runs.dir / "lower";
+  write_run(lower, "lower", {0.0, 0.1, 0.2}, {1.0, 2.0, 3.0}, [](double t) { return yarn_frame(6, t, 0.0); });
+  auto with_time_error = [](const std::filesystem::path& run, double mean_rms_m) {
+    Json te = Json::object();
+    te.set("method", "richardson");
+    te.set("mean_rms_m", mean_rms_m);
+    te.set("max_m", 2 * mean_rms_m);
+    Json summary = Json::object();
+    summary.set("time_error", te);
+    write_file_atomically(run / "summary.json", summary.dump());
+  };
+  const auto csv = runs.dir / "d.csv";
+  const std::string args = test::shell_quote(runs.yarn.string()) + " " + test::shell_quote(lower.string()) + " --out " +
+                           test::shell_quote(csv.string());
+  auto r = run_script("compare.py", args);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  expect_one_millimetre(csv, 1.0);
+  EXPECT_NE(r.output.find("distance: 1 mm"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("budget: incomplete"), std::string::npos) << r.output;
+  with_time_error(runs.yarn, 2e-5);
+  with_time_error(lower, 5e-5);
+  r = run_script("compare.py", args);
+  EXPECT_NE(r.output.find("time error of B (" + lower.string() + "): 0.05 mm mean RMS, 0.1 mm max (richardson)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("budget: both time errors are below a tenth of the distance"), std::string::npos) << r.output;
+  with_time_error(lower, 3e-4);
+  r = run_script("compare.py", args);
+  EXPECT_NE(r.output.find("above a tenth of the distance"), std::string::npos) << r.output;
+  with_time_error(lower, 2e-3);
+  r = run_script("compare.py", args);
+  EXPECT_NE(r.output.find("EXCEEDS the distance"), std::string::npos) << r.output;
+}
+
 TEST(CompareScript, MissingRunFolderExitsWithStatus2) {
   ASSERT_TRUE(test::python_with("numpy, meshio"));
   Runs runs;
