@@ -1,4 +1,5 @@
 #include "experiments/driver/calibrate.h"
+#include "experiments/driver/time_error.h"
 
 #include <algorithm>
 #include <chrono>
@@ -54,6 +55,7 @@ VariantRun run_continuum_variant(const std::string& name, const Scene& scene, co
   RecordOptions rec;
   rec.progress = progress;
   rec.label = name;
+  rec.step_ends = true;  // for its time error estimate
   rec.on_frame = [&](const Frame& f) {
     if (k >= yarn.size()) return;
     Vec q(3 * f.points.rows());
@@ -242,6 +244,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     RecordOptions rec;
     rec.progress = c.progress;
     rec.label = label + " yarn";
+    rec.step_ends = true;
     rec.on_frame = [&](const Frame& f) {
       CrossingFrame cf;
       cf.x = f.points;
@@ -269,11 +272,16 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     entry.set("scene_hash", text_hash(p.validation_texts[s]));
     entry.set("frames", static_cast<int>(yarn.size()));
     entry.set("yarn_cpu_s_per_step", cpu_per_step(yr));
+    // Each side's time error beside the distance (docs/models.md §7.8).
+    if (c.progress) std::fprintf(stderr, "  validation %s: yarn-level time error\n", label.c_str());
+    const TimeErrorEstimate yarn_error = estimate_time_error(vs, "yarn", vs.integrator, iopt, yr);
+    entry.set("yarn_time_error", yarn_error.to_json());
     Json vars = Json::array();
     for (const auto& [name, m] : variants) {
       if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
-      const VariantRun vr = run_continuum_variant(name, with_material(vs, m, c.border_strip && name != "first_guess"),
-                                                  yarn, iopt, c.progress);
+      const Scene variant_scene = with_material(vs, m, c.border_strip && name != "first_guess");
+      const VariantRun vr = run_continuum_variant(name, variant_scene, yarn, iopt, c.progress);
+      const TimeErrorEstimate fem_error = estimate_time_error(variant_scene, "fem", vs.integrator, iopt, vr.run);
       for (size_t k = 0; k < vr.times.size(); ++k)
         vcsv->row({label, name, csv_number(vr.times[k]), csv_number(vr.rms[k]), csv_number(vr.max[k])});
       Json j = Json::object();
@@ -285,10 +293,16 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
       j.set("max_m", maximum(vr.max));
       j.set("cpu_s_per_step", cpu_per_step(vr.run));
       j.set("step_time_ratio_to_yarn", cpu_per_step(yr) > 0 ? cpu_per_step(vr.run) / cpu_per_step(yr) : NAN);
+      j.set("time_error", fem_error.to_json());
+      const std::string budget = error_budget_verdict(mean(vr.rms), yarn_error, fem_error);
+      j.set("budget", budget);
       vars.push(std::move(j));
       if (c.progress)
-        std::fprintf(stderr, "    %s: RMS distance mean %.3g mm, worst frame %.3g mm, max %.3g mm\n", name.c_str(),
-                     1e3 * mean(vr.rms), 1e3 * maximum(vr.rms), 1e3 * maximum(vr.max));
+        std::fprintf(stderr,
+                     "    %s: RMS distance mean %.3g mm, worst frame %.3g mm, max %.3g mm; time error yarn %.3g mm, "
+                     "continuum %.3g mm (mean RMS): %s\n",
+                     name.c_str(), 1e3 * mean(vr.rms), 1e3 * maximum(vr.rms), 1e3 * maximum(vr.max),
+                     1e3 * yarn_error.mean_rms, 1e3 * fem_error.mean_rms, budget.c_str());
     }
     entry.set("variants", std::move(vars));
     validation.push(std::move(entry));

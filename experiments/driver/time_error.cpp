@@ -74,6 +74,14 @@ TimeErrorEstimate estimate_time_error(const Scene& scene, const std::string& mod
   return e;
 }
 
+std::string error_budget_verdict(double distance_m, const TimeErrorEstimate& a, const TimeErrorEstimate& b) {
+  if (!a.ok() || !b.ok()) return "time error unknown";
+  const double worst = std::max(a.mean_rms, b.mean_rms);
+  if (worst > distance_m) return "time error exceeds the distance";
+  if (worst > 0.1 * distance_m) return "time error above a tenth of the distance";
+  return "resolved";
+}
+
 Json TimeErrorEstimate::to_json() const {
   Json j = Json::object();
   j.set("method", method);

@@ -38,6 +38,12 @@ TimeErrorEstimate estimate_time_error(const Scene& scene, const std::string& mod
                                       const std::string& integrator_name, const IntegratorOptions& options,
                                       const RecordedRun& run, bool progress = false);
 
+// What a mean distance between two runs measures, given each run's estimate
+// (the rule experiments/compare.py prints): "resolved" when both time errors
+// are below a tenth of it, "time error above a tenth of the distance",
+// "time error exceeds the distance", or "time error unknown".
+std::string error_budget_verdict(double distance_m, const TimeErrorEstimate& a, const TimeErrorEstimate& b);
+
 // Per-frame RMS and max over nodes of ‖a − b‖ · factor (same nodes and times).
 void frame_distances(const Trajectory& a, const Trajectory& b, double factor, std::vector<double>& rms,
                      std::vector<double>& max);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "tests/support/test_scenes.h"
 
 namespace {
 
@@ -306,14 +307,19 @@ TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
 }
 
 TEST_F(Cli, CalibrateWritesAParameterFileThatRunReads) {
-  const fs::path out = dir_ / "cal";
+  const fs::path out = dir_ / "cal", small = dir_ / "small.toml";
+  std::ofstream(small) << wl::test::hanging_cloth_toml(5, 0.02);
   Result r = run_cli("calibrate '" + kHangingWind +
-                         "' --tests uniaxial-warp,bending-warp --patch 7 --starts 1 --quiet"
-                         " --out '" +
-                         out.string() + "'",
+                         "' --tests uniaxial-warp,bending-warp --patch 7 --starts 1 --quiet --validate '" +
+                         small.string() + "' --out '" + out.string() + "'",
                      dir_);
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* f : {"params.toml", "calibration.json", "curves.csv"}) EXPECT_TRUE(fs::exists(out / f)) << f;
+  for (const char* f : {"params.toml", "calibration.json", "curves.csv", "validation.csv"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  // The validation sets each side's time error beside the distance.
+  const std::string record = file_text(out / "calibration.json");
+  EXPECT_NE(record.find("\"yarn_time_error\""), std::string::npos);
+  EXPECT_NE(record.find("\"budget\""), std::string::npos);
   const fs::path run = dir_ / "run";
   r = run_cli("run '" + kHangingWind + "' --model fem --duration 0.01 --quiet --fem-params '" +
                   (out / "params.toml").string() + "' --out '" + run.string() + "'",

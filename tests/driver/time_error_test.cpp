@@ -134,6 +134,20 @@ TEST(AccuracyChoice, ReachesItsTargetOnASmallCloth) {
   }
 }
 
+// The verdict beside a distance: resolved only when both time errors are below a tenth of it.
+TEST(TimeErrorEstimate, BudgetVerdict) {
+  TimeErrorEstimate a, b;
+  a.mean_rms = 1e-5;
+  b.mean_rms = 5e-5;
+  EXPECT_EQ(error_budget_verdict(1e-3, a, b), "resolved");
+  b.mean_rms = 2e-4;
+  EXPECT_EQ(error_budget_verdict(1e-3, a, b), "time error above a tenth of the distance");
+  a.mean_rms = 2e-3;
+  EXPECT_EQ(error_budget_verdict(1e-3, a, b), "time error exceeds the distance");
+  b.second_run = {Outcome::diverged, "failed"};
+  EXPECT_EQ(error_budget_verdict(1e-3, a, b), "time error unknown");
+}
+
 // An error-controlled library method is estimated by a rerun at rtol/100.
 TEST(TimeErrorEstimate, LibraryMethodsUseATighterTolerance) {
   Scene s = parse_scene(test::hanging_cloth_toml(4, 0.02), "cloth.toml");
