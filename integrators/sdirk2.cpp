@@ -93,9 +93,9 @@ StepResult Sdirk2::solve_stage(double t, double h, const Vec& q_base, const Vec&
     const double size = dV.lpNorm<Eigen::Infinity>();
     const double rate = std::isfinite(previous) ? size / previous : 1.0;  // unknown on a fresh matrix
     const double remaining = rate < 1.0 ? rate / (1.0 - rate) * size : size;
-    // Below round-off (64 ε) the iteration has nothing left to correct.
+    // Converged to newton_tol, or to round-off (64 ε) where nothing is left to correct.
     const double floor = std::max(opt_.newton_tol, 64 * std::numeric_limits<double>::epsilon());
-    const bool tight = std::min(remaining, size) <= floor * (1.0 + V.lpNorm<Eigen::Infinity>());
+    const bool tight = remaining <= floor * (1.0 + V.lpNorm<Eigen::Infinity>());
     // Adaptive mode: the iteration error of the positions, γh·remaining, is a
     // small fraction of the tolerance.
     const bool within_tolerance = opt_.adaptive && weighted_rms(gh * (remaining / std::max(size, 1e-300)) * dV) <= 1e-2;
