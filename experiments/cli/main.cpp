@@ -427,8 +427,9 @@ int main(int argc, char** argv) {
     }
     if (rep.accuracy && !rep.accuracy->reached) {
       std::cerr << "weavelab: the time error target " << rep.accuracy->target_m << " m was not reached in "
-                << rep.accuracy->trials.size() << " trials; the run used the last one (summary in "
-                << opt.out_dir.string() << ")\n";
+                << rep.accuracy->trials.size() << " trials"
+                << (rep.accuracy->note.empty() ? "" : ": " + rep.accuracy->note)
+                << "; the run used the last one (summary in " << opt.out_dir.string() << ")\n";
       return 1;
     }
     return 0;

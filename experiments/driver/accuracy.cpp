@@ -47,6 +47,15 @@ AccuracyChoice choose_for_accuracy(const Scene& scene, const std::string& model_
       c.reached = true;
       break;
     }
+    // A tighter tolerance that no longer lowers the estimate: the error has a
+    // floor that error control does not reach (docs/models.md §7.10).
+    const size_t n = c.trials.size();
+    if (n >= 2 && std::isfinite(c.trials[n - 2].estimate_m) && trial.estimate_m > 0.8 * c.trials[n - 2].estimate_m) {
+      c.note = "the estimate stopped following the tolerance (" + std::to_string(c.trials[n - 2].estimate_m) +
+               " m at rtol " + std::to_string(c.trials[n - 2].rtol) + ", " + std::to_string(trial.estimate_m) +
+               " m at rtol " + std::to_string(rtol) + "): a floor above the target";
+      break;
+    }
     // The error of an error-controlled run follows its tolerance: aim 30 % below.
     rtol *= std::clamp(0.7 * target_m / trial.estimate_m, 1e-3, 0.5);
   }
@@ -57,6 +66,7 @@ Json AccuracyChoice::to_json() const {
   Json j = Json::object();
   j.set("target_m", target_m);
   j.set("reached", reached);
+  if (!note.empty()) j.set("note", note);
   j.set("integrator", integrator);
   j.set("rtol", rtol);
   j.set("atol", atol);

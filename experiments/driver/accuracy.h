@@ -2,7 +2,8 @@
 // whose estimated time error (experiments/driver/time_error.h), mean over
 // frames of the RMS over nodes, is at most a target. The method is sdirk2
 // with error control; its tolerance is tightened from trial to trial in
-// proportion to the measured estimate until the target is met.
+// proportion to the measured estimate until the target is met, or until a
+// tighter tolerance lowers the estimate by less than 20 % (a floor).
 #pragma once
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@ struct AccuracyChoice {
   std::string integrator = "sdirk2";
   double rtol = 0.0, atol = 0.0;  // of the chosen (last) trial
   bool reached = false;
+  std::string note;  // why the trials stopped short of the target, when they did
   std::vector<AccuracyTrial> trials;
   TimeErrorEstimate estimate;  // of the chosen trial
   Json to_json() const;
