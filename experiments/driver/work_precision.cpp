@@ -213,6 +213,7 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
           res.notes.push_back(model + " " + integ + ": ladder stopped: " + res.rows.back().run.result.message);
           break;
         }
+        if (o != Outcome::ok) continue;  // a failed rung's CPU time predicts nothing of the next
         prev_cpu = last_cpu;
         last_cpu = res.rows.back().run.cpu_s;
       }
