@@ -5,8 +5,11 @@ Reads DIR/fidelity.csv and DIR/fidelity.json and writes DIR/fidelity.png and
 .svg: the worst-frame RMS distance to the reference against CPU time, log-log,
 one labelled point per variant (yarn-level and continuum in two colours), the
 Pareto front as a step line, the tolerance as a horizontal line and the
-cheapest variant within it ringed. The reference (distance 0) sits on the
-bottom edge. Runs that did not end "ok" are listed under the chart.
+cheapest variant within it ringed, and each run's own estimated time error
+(when the ladder estimated it) as a hollow marker joined to its point: a
+distance at or below the time error does not measure the model. The reference
+(distance 0) sits on the bottom edge. Runs that did not end "ok" are listed
+under the chart.
 
 Usage: plot_fidelity.py DIR [--out PREFIX]
 """
@@ -70,6 +73,13 @@ def main():
                     textcoords="offset points", xytext=(5, -11 if near else 4), fontsize=8)
         if r["variant"] == choice.get("variant"):
             ax.scatter(x, y, s=220, facecolors="none", edgecolors="black", linewidths=1.2, zorder=4)
+    estimated = [(float(r["cpu_s"]), shown(e), float(r["time_error_worst_frame_rms_m"]))
+                 for r, e in zip(ok, errors) if r.get("time_error_worst_frame_rms_m", "") not in ("", "nan")]
+    for x, y, t in estimated:
+        ax.plot([x, x], [y, shown(t)], color="grey", linewidth=0.8, zorder=2)
+        ax.scatter(x, shown(t), marker="v", facecolors="none", edgecolors="grey", s=30, zorder=2)
+    if estimated:
+        ax.scatter([], [], marker="v", facecolors="none", edgecolors="grey", label="the run's own time error")
     front = sorted((float(r["cpu_s"]), shown(e)) for r, e in zip(ok, errors) if r["on_front"] == "1")
     if front:
         xs, ys = zip(*front)

@@ -27,6 +27,10 @@
 
 namespace {
 
+const std::string kResolutionHelp =
+    "Time resolution of the comparison: controlled (sdirk2 under error control at --rtol) or scene (each "
+    "scene's own integrator and step)";
+
 std::string joined(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -194,6 +198,10 @@ int main(int argc, char** argv) {
   calibrate->add_flag("--border-strip", cal.border_strip,
                       "Continuum with bars for the border yarns' outer half spacing ([fem] border_strip)");
   calibrate->add_option("--validate", cal_validate, "Scene to validate the calibrated continuum on (repeatable)");
+  std::string cal_resolution = "controlled";
+  double cal_rtol = 1e-4;
+  calibrate->add_option("--resolution", cal_resolution, kResolutionHelp)->capture_default_str();
+  calibrate->add_option("--rtol", cal_rtol, "Tolerance of the controlled resolution")->capture_default_str();
   calibrate->add_option("--out", cal_out, "Output folder (default results/calibration/<scene name>)");
   calibrate->add_flag("--quiet", cal_quiet, "No progress on stderr");
 
@@ -220,6 +228,14 @@ int main(int argc, char** argv) {
   fidelity->add_option("--repeats", fid.repeats, "Runs per variant; CPU and wall time are their medians")
       ->capture_default_str();
   fidelity->add_option("--duration", fid_duration, "Simulated time [s] (overrides the scene)");
+  std::string fid_resolution = "controlled";
+  double fid_rtol = 1e-4;
+  bool fid_no_estimate = false;
+  fidelity->add_option("--resolution", fid_resolution, kResolutionHelp + " (the reference and the model rungs)")
+      ->capture_default_str();
+  fidelity->add_option("--rtol", fid_rtol, "Tolerance of the controlled resolution")->capture_default_str();
+  fidelity->add_flag("--no-error-estimate", fid_no_estimate,
+                     "Do not estimate each run's time error (halves the cost; no time-error column)");
   fidelity->add_option("--out", fid_out, "Output folder (default results/fidelity/<scene name>)");
   fidelity->add_flag("--quiet", fid_quiet, "No progress on stderr");
   wl::FitCommandConfig fitc;
@@ -312,6 +328,7 @@ int main(int argc, char** argv) {
       if (calibrate->count("--patch") && cal.patch < 1)
         throw std::invalid_argument("--patch: got " + std::to_string(cal.patch) + ", expected a number of crossings");
       for (const auto& v : cal_validate) cal.validate.emplace_back(v);
+      cal.resolution = wl::parse_resolution("--resolution", cal_resolution, cal_rtol);
       cal.out_dir = cal_out.empty()
                         ? std::filesystem::path("results/calibration") / std::filesystem::path(cal_scene).stem()
                         : std::filesystem::path(cal_out);
@@ -339,6 +356,8 @@ int main(int argc, char** argv) {
       fid.variants = split_list(fid_variants);
       if (fidelity->count("--variants") && fid.variants.empty()) throw std::invalid_argument("--variants: empty list");
       if (!fid_params.empty()) fid.fem_params = fid_params;
+      fid.resolution = wl::parse_resolution("--resolution", fid_resolution, fid_rtol);
+      fid.error_estimate = !fid_no_estimate;
       fid.out_dir =
           wl::output_folder(fidelity->count("--out") ? std::optional(fid_out) : std::nullopt,
                             std::filesystem::path("results/fidelity") / std::filesystem::path(fid_scene).stem());

@@ -151,7 +151,7 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   if (c.fit.starts < 1) throw std::invalid_argument("--starts: need at least 1, got " + std::to_string(c.fit.starts));
   (void)fem_material(p.scene);  // a bad parameter file is reported before anything runs
   for (const auto& v : c.validate) {
-    p.validation_scenes.push_back(load_scene(v.string()));
+    p.validation_scenes.push_back(at_resolution(load_scene(v.string()), c.resolution));
     p.validation_texts.push_back(read_text_file(v));
   }
   return p;
@@ -235,11 +235,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   for (size_t s = 0; s < p.validation_scenes.size(); ++s) {
     const Scene& vs = p.validation_scenes[s];
     const std::string label = c.validate[s].stem().string();
-    IntegratorOptions iopt;
-    iopt.dt = vs.dt_s;
-    iopt.adaptive = vs.adaptive;
-    iopt.rtol = vs.rtol;
-    iopt.atol = vs.atol;
+    const IntegratorOptions iopt = scene_integrator_options(vs);
     std::vector<CrossingFrame> yarn;
     RecordOptions rec;
     rec.progress = c.progress;
@@ -270,6 +266,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     Json entry = Json::object();
     entry.set("scene", c.validate[s].string());
     entry.set("scene_hash", text_hash(p.validation_texts[s]));
+    entry.set("resolution", c.resolution.describe());
     entry.set("frames", static_cast<int>(yarn.size()));
     entry.set("yarn_cpu_s_per_step", cpu_per_step(yr));
     // Each side's time error beside the distance (docs/models.md §7.8).

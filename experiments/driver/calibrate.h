@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "calibration/fit.h"
+#include "experiments/driver/resolution.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -29,6 +30,7 @@ struct CalibrateConfig {
   bool border_strip = false;                           // continuum with [fem] border_strip (tests and validation)
   FitOptions fit;
   std::vector<std::filesystem::path> validate;  // scenes to validate on
+  Resolution resolution;                        // of the validation runs (both sides)
   std::filesystem::path out_dir;
   bool progress = true;
 };

@@ -9,6 +9,7 @@
 
 #include "experiments/driver/experiment_meta.h"
 #include "experiments/driver/recorded_run.h"
+#include "experiments/driver/time_error.h"
 #include "experiments/output/atomic_file.h"
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
@@ -84,15 +85,6 @@ std::vector<double> surface_distances(const FemModel& geometry, const Points& x,
   return d;
 }
 
-IntegratorOptions scene_integrator_options(const Scene& s) {
-  IntegratorOptions o;
-  o.dt = s.dt_s;
-  o.adaptive = s.adaptive;
-  o.rtol = s.rtol;
-  o.atol = s.atol;
-  return o;
-}
-
 // Runs a scene `repeats` times: the first run's record (measured through
 // `record`), with CPU and wall time the medians over all runs.
 RecordedRun timed_runs(const Scene& s, const std::string& model, const RecordOptions& record, int repeats) {
@@ -136,18 +128,19 @@ double max_energy_difference(const RecordedRun& run, const ReferenceFrames& ref)
   return m;
 }
 
-FidelityChoice cheapest_within(const std::vector<FidelityRow>& rows, double tolerance) {
-  FidelityChoice c;
-  c.tolerance_m = tolerance;
-  const FidelityRow* best = nullptr;
-  for (const FidelityRow& r : rows)
-    if (r.complete() && r.worst_frame_rms_m <= tolerance && (!best || r.cpu_s < best->cpu_s)) best = &r;
-  if (best) {
-    c.variant = best->variant;
-    c.cpu_s = best->cpu_s;
-    c.speedup = best->cpu_s > 0 ? rows.front().cpu_s / best->cpu_s : NAN;
+// The run's own time error into the row (docs/models.md §7.8), when asked for.
+void add_time_error(FidelityRow& row, const Scene& s, const std::string& model, const RecordedRun& run,
+                    const FidelityConfig& c) {
+  if (!c.error_estimate || run.result.outcome != Outcome::ok) return;
+  if (c.progress) std::fprintf(stderr, "fidelity: %s time error\n", row.variant.c_str());
+  const TimeErrorEstimate e = estimate_time_error(s, model, s.integrator, scene_integrator_options(s), run);
+  row.time_error_method = e.method;
+  if (!e.ok()) {
+    row.time_error_method += std::string(" (second run ") + to_string(e.second_run.outcome) + ")";
+    return;
   }
-  return c;
+  row.time_error_mean_rms_m = e.mean_rms;
+  row.time_error_worst_frame_rms_m = *std::max_element(e.rms.begin(), e.rms.end());
 }
 
 Json choice_json(const FidelityChoice& c, double cloth_size) {
@@ -161,6 +154,22 @@ Json choice_json(const FidelityChoice& c, double cloth_size) {
 }
 
 }  // namespace
+
+FidelityChoice cheapest_within(const std::vector<FidelityRow>& rows, double tolerance) {
+  FidelityChoice c;
+  c.tolerance_m = tolerance;
+  const FidelityRow* best = nullptr;
+  for (const FidelityRow& r : rows)
+    if (r.complete() && r.worst_frame_rms_m <= tolerance && !(r.time_error_worst_frame_rms_m > tolerance) &&
+        (!best || r.cpu_s < best->cpu_s))
+      best = &r;
+  if (best) {
+    c.variant = best->variant;
+    c.cpu_s = best->cpu_s;
+    c.speedup = best->cpu_s > 0 ? rows.front().cpu_s / best->cpu_s : NAN;
+  }
+  return c;
+}
 
 std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vector<double>& error) {
   std::vector<bool> front(cost.size(), true);
@@ -194,7 +203,10 @@ FidelityPlan plan_fidelity(const FidelityConfig& c) {
 
   auto scene_of = [&](const std::string& option, const std::string& name) {
     try {
-      return variant_scene(s, name, calibrated);
+      VariantScene v = variant_scene(s, name, calibrated);
+      if (!v.time_rung) v.scene = at_resolution(v.scene, c.resolution);
+      if (name == "scene_step" && c.resolution.scene) v.same_as_full = "the comparison runs at the scene's step";
+      return v;
     } catch (const std::invalid_argument& e) {  // an unknown name
       throw std::invalid_argument(option + ": " + e.what());
     }
@@ -238,6 +250,7 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   rec.progress = c.progress;
   rec.energies = true;
   rec.label = p.reference.name;
+  rec.step_ends = true;  // for the Richardson time-error estimate
   rec.on_frame = [&](const Frame& f) {
     const DataArray &u = point_array(f, "u"), &v = point_array(f, "v");
     std::vector<Vec2> uv;
@@ -259,6 +272,13 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
     for (size_t k = 0; k < ref.x.size(); ++k) tally.add_frame(crossing_distances(ref.x[k], ref.x[k]));
     tally.fill(row, ref);
     row.energy_diff_J = max_energy_difference(rr, ref);
+    add_time_error(row, rs, "yarn", rr, c);
+    if (c.progress && !std::isnan(row.time_error_worst_frame_rms_m))
+      std::fprintf(stderr, "  reference time error: worst-frame RMS %.3g mm (mean %.3g mm)%s\n",
+                   1e3 * row.time_error_worst_frame_rms_m, 1e3 * row.time_error_mean_rms_m,
+                   row.time_error_worst_frame_rms_m > 0.1 * p.tolerance_m
+                       ? ": above a tenth of the tolerance, distances that small do not measure a model difference"
+                       : "");
     out.rows.push_back(row);
   }
 
@@ -282,9 +302,12 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
     FidelityRow row = row_of(pv, run);
     tally.fill(row, ref);
     row.energy_diff_J = max_energy_difference(run, ref);
+    add_time_error(row, vs, pv.variant.model, run, c);
     if (c.progress)
-      std::fprintf(stderr, "  %s: %s, %d DoFs, CPU %.3g s, worst-frame RMS %.3g mm, max %.3g mm\n", pv.name.c_str(),
-                   row.outcome.c_str(), row.dofs, row.cpu_s, 1e3 * row.worst_frame_rms_m, 1e3 * row.max_m);
+      std::fprintf(stderr,
+                   "  %s: %s, %d DoFs, CPU %.3g s, worst-frame RMS %.3g mm, max %.3g mm; own time error %.3g mm\n",
+                   pv.name.c_str(), row.outcome.c_str(), row.dofs, row.cpu_s, 1e3 * row.worst_frame_rms_m,
+                   1e3 * row.max_m, 1e3 * row.time_error_worst_frame_rms_m);
     out.rows.push_back(row);
   }
 
@@ -307,13 +330,15 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   std::filesystem::create_directories(c.out_dir);
   CsvTable csv(c.out_dir / "fidelity.csv",
                {"variant", "model", "dofs", "steps", "cpu_s", "wall_s", "rms_m", "worst_frame_rms_m", "max_m",
-                "energy_diff_J", "compared_fraction", "outcome", "on_front", "same_as_full"});
+                "energy_diff_J", "compared_fraction", "time_error_method", "time_error_mean_rms_m",
+                "time_error_worst_frame_rms_m", "outcome", "on_front", "same_as_full"});
   Json rows = Json::array();
   for (const FidelityRow& r : out.rows) {
     csv.row({r.variant, r.model, std::to_string(r.dofs), std::to_string(r.steps), csv_number(r.cpu_s),
              csv_number(r.wall_s), csv_number(r.rms_m), csv_number(r.worst_frame_rms_m), csv_number(r.max_m),
-             csv_number(r.energy_diff_J), csv_number(r.compared_fraction), r.outcome, r.on_front ? "1" : "0",
-             r.same_as_full});
+             csv_number(r.energy_diff_J), csv_number(r.compared_fraction), r.time_error_method,
+             csv_number(r.time_error_mean_rms_m), csv_number(r.time_error_worst_frame_rms_m), r.outcome,
+             r.on_front ? "1" : "0", r.same_as_full});
     Json j = Json::object();
     j.set("variant", r.variant);
     j.set("model", r.model);
@@ -328,6 +353,13 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
     j.set("max_m", r.max_m);
     j.set("energy_diff_J", r.energy_diff_J);
     j.set("compared_fraction", r.compared_fraction);
+    if (!r.time_error_method.empty()) {
+      Json te = Json::object();
+      te.set("method", r.time_error_method);
+      te.set("mean_rms_m", r.time_error_mean_rms_m);
+      te.set("worst_frame_rms_m", r.time_error_worst_frame_rms_m);
+      j.set("time_error", std::move(te));
+    }
     j.set("on_front", r.on_front);
     if (!r.same_as_full.empty()) j.set("same_as_full", r.same_as_full);
     rows.push(std::move(j));
@@ -339,6 +371,10 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   j.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, c.overrides));
   j.set("scene_hash", text_hash(c.scene.text));
   j.set("reference", p.reference.name);
+  j.set("resolution", c.resolution.describe() + " for the reference and the model rungs; the time rungs at their own");
+  j.set("time_errors", c.error_estimate ? "each run's own estimate (docs/models.md §7.8); a variant whose "
+                                          "worst-frame time error exceeds the tolerance is not within it"
+                                        : "not estimated (--no-error-estimate)");
   j.set("calibration", p.calibration.empty() ? "none: the calibrated continuum variants are left out" : p.calibration);
   j.set("cloth_size_m", p.cloth_size_m);
   j.set("repeats", c.repeats);

@@ -2,12 +2,14 @@
 // (fidelity_variants.h) and each rung measured against a yarn-level reference
 // at the reference's crossings (docs/design.md §7.5). Writes into the output folder
 //   fidelity.csv   one row per variant: DoFs, steps, CPU and wall time, RMS,
-//                  worst-frame RMS and max distance, energy difference, Pareto front
+//                  worst-frame RMS and max distance, energy difference, the
+//                  run's estimated time error (docs/models.md §7.8), Pareto front
 //   fidelity.json  scene, reference, tolerance, the rows, the variants left
 //                  out and why, the cheapest variant within the tolerance (and
 //                  within 1 % and 5 % of the cloth size) with its speed-up
 // (experiments/plot_fidelity.py draws the Pareto chart from these).
 #pragma once
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "experiments/driver/fidelity_variants.h"
+#include "experiments/driver/resolution.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -28,6 +31,8 @@ struct FidelityConfig {
   std::optional<std::filesystem::path> fem_params;  // calibrated continuum parameters
   std::optional<double> tolerance_m;                // absent: 1 % of the cloth size
   int repeats = 1;                                  // runs per variant; CPU and wall time are their medians
+  Resolution resolution;                            // of the reference and the model rungs
+  bool error_estimate = true;                       // each run's time error beside its distance
   std::filesystem::path out_dir;
   bool progress = true;
 };
@@ -68,13 +73,19 @@ struct FidelityRow {
   // max over frames of |ΔE_variant − ΔE_reference|, ΔE = (T + V)(t) − (T + V)(0), each model's own V [J]
   double energy_diff_J = 0;
   double compared_fraction = 0;  // compared points / (reference frames × crossings)
-  bool on_front = false;         // Pareto front of (cpu_s, worst_frame_rms_m) among the complete runs
+  // The run's own estimated time error (docs/models.md §7.8): mean and worst
+  // over frames of the per-frame RMS [m]; NaN when not estimated or the second run failed.
+  std::string time_error_method;
+  double time_error_mean_rms_m = NAN, time_error_worst_frame_rms_m = NAN;
+  bool on_front = false;  // Pareto front of (cpu_s, worst_frame_rms_m) among the complete runs
   bool complete() const { return outcome == "ok" && compared_fraction > 0; }
 };
 
 struct FidelityChoice {
   double tolerance_m = 0;
-  std::string variant;  // cheapest complete variant with worst_frame_rms_m ≤ tolerance
+  // cheapest complete variant with worst_frame_rms_m ≤ tolerance and, when
+  // estimated, its time error's worst-frame RMS ≤ tolerance
+  std::string variant;
   double cpu_s = 0;
   double speedup = 0;  // reference CPU time / the variant's
 };
@@ -88,6 +99,10 @@ struct FidelityResult {
 // Runs the plan and writes the two files. A reference run that does not end ok
 // is a std::runtime_error; a variant that fails is a row with its outcome.
 FidelityResult run_fidelity(const FidelityConfig& config, const FidelityPlan& plan);
+
+// The cheapest complete row within `tolerance` (the rule of FidelityChoice::variant);
+// the speed-up is over rows.front(), the reference.
+FidelityChoice cheapest_within(const std::vector<FidelityRow>& rows, double tolerance);
 
 // Pareto front of points (cost, error), both to be small: on_front[i] when no
 // other point has cost ≤ and error ≤ with one of them strictly smaller.

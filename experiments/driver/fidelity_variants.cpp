@@ -21,9 +21,9 @@ bool stride_fits(const Scene& s, int k) {
 }  // namespace
 
 const std::vector<std::string>& fidelity_variant_names() {
-  static const std::vector<std::string> names{"full",         "no_friction",    "no_parallel_contact",
-                                              "linear_shear", "frozen_sliding", "fem_s1",
-                                              "fem_s2",       "fem_s4",         "fem_first_guess"};
+  static const std::vector<std::string> names{
+      "full",   "no_friction",     "no_parallel_contact", "linear_shear", "frozen_sliding", "fem_s1",          "fem_s2",
+      "fem_s4", "fem_first_guess", "scene_step",          "half_step",    "quarter_step",   "sdirk2_rtol_1e-3"};
   return names;
 }
 
@@ -47,6 +47,19 @@ VariantScene variant_scene(const Scene& scene, const std::string& name, const st
     if (!(s.terms.shear && s.contact.shear_model == ContactParams::ShearModel::gong))
       v.same_as_full = "the scene has no shear lock (shear off, or already Cirio's linear shear)";
     s.contact.shear_model = ContactParams::ShearModel::cirio;
+    return v;
+  }
+  if (name == "scene_step" || name == "half_step" || name == "quarter_step" || name == "sdirk2_rtol_1e-3") {
+    v.time_rung = true;
+    if (name == "sdirk2_rtol_1e-3") {
+      s.integrator = "sdirk2";
+      s.adaptive = true;
+      s.rtol = 1e-3;
+      s.atol = 1e-6;
+    } else if (name != "scene_step") {
+      if (s.adaptive) v.impossible = "the scene's integrator runs under error control, without a fixed step";
+      s.dt_s /= name == "half_step" ? 2.0 : 4.0;
+    }
     return v;
   }
   if (name == "frozen_sliding") {

@@ -7,6 +7,12 @@
 //   frozen_sliding       yarn, cloth.sliding = false: 3 DoFs per node (docs/models.md §2.1)
 //   fem_s1, fem_s2, fem_s4   continuum on every 1st, 2nd, 4th crossing, calibrated parameters (§6)
 //   fem_first_guess      continuum on every crossing, parameters derived from the yarns (§6.7)
+// and the time rungs, the full yarn model at other time resolutions (§7.11):
+//   scene_step           the scene's own integrator and step (1 ms, be-linear, in the published scenes)
+//   half_step, quarter_step   the scene's integrator at 1/2 and 1/4 of its step
+//   sdirk2_rtol_1e-3     sdirk2 under error control at rtol 1e-3
+// The model rungs run at the comparison's resolution (experiments/driver/resolution.h),
+// the time rungs at their own.
 #pragma once
 #include <optional>
 #include <string>
@@ -29,6 +35,7 @@ struct VariantScene {
   // Why the variant is the scene's own yarn model under another name ("" when
   // it simplifies something), e.g. no_friction where sliding is frozen.
   std::string same_as_full;
+  bool time_rung = false;  // runs at its own integrator and step, not at the comparison's resolution
 };
 
 // The scene of variant `name`; `calibrated` holds the calibrated continuum

@@ -5,6 +5,8 @@
 
 #include "calibration/scene_parameters.h"
 #include "experiments/driver/experiment_meta.h"
+#include "experiments/driver/resolution.h"
+#include "experiments/driver/time_error.h"
 #include "experiments/output/atomic_file.h"
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
@@ -17,6 +19,51 @@ namespace {
 std::string num(double x) {
   char b[32];
   std::snprintf(b, sizeof b, "%.10g", x);
+  return b;
+}
+
+// The fitted distance beside each side's time error (docs/models.md §7.8): the
+// fitted model rerun to the last fitted frame at the fit's integrator and step,
+// its estimate formed by a second run; the target's read from its summary.json.
+Json fit_error_budget(const FitCommandConfig& c, const FitCommandPlan& p, const TrajectoryFitResult& r) {
+  Scene fitted = p.scene;
+  for (const TrajectoryFitParameter& fp : r.parameters) set_scene_parameter(fitted, fp.key, fp.value);
+  fitted.integrator = c.fit.integrator.empty() ? p.scene.integrator : c.fit.integrator;
+  fitted.adaptive = false;  // the fit steps at the scene's dt
+  fitted.duration_s = p.target.back().time;
+  RecordOptions rec;
+  rec.step_ends = true;
+  rec.progress = c.fit.progress;
+  rec.label = "fitted run";
+  const IntegratorOptions opt = scene_integrator_options(fitted);
+  const RecordedRun run = run_recorded(fitted, c.fit.model, fitted.integrator, opt, rec);
+  Json b = Json::object();
+  double distance = 0;
+  for (double x : r.final_rms) distance += x / double(r.final_rms.size());
+  b.set("distance_mean_rms_m", distance);
+  TimeErrorEstimate fitted_error;  // not_offered: no estimate
+  fitted_error.second_run.outcome = Outcome::not_offered;
+  if (run.result.outcome == Outcome::ok) {
+    fitted_error = estimate_time_error(fitted, c.fit.model, fitted.integrator, opt, run, c.fit.progress);
+    b.set("fitted_time_error", fitted_error.to_json());
+  } else {
+    b.set("fitted_time_error", "the fitted rerun ended " + std::string(to_string(run.result.outcome)));
+  }
+  // The target's estimate, as the verdict reads it.
+  TimeErrorEstimate target_error;
+  target_error.second_run.outcome = Outcome::not_offered;
+  if (const std::optional<double> t = read_run_time_error(c.target_dir)) {
+    target_error.second_run.outcome = Outcome::ok;
+    target_error.mean_rms = *t;
+    b.set("target_time_error_mean_rms_m", *t);
+  } else {
+    b.set("target_time_error_mean_rms_m", "not estimated: run the target with --error-estimate");
+  }
+  const std::string verdict = error_budget_verdict(distance, fitted_error, target_error);
+  b.set("verdict", verdict);
+  if (c.fit.progress)
+    std::fprintf(stderr, "fit: distance %.3g mm mean RMS; time error (mean RMS) fitted %.3g mm, target %.3g mm: %s\n",
+                 1e3 * distance, 1e3 * fitted_error.mean_rms, 1e3 * target_error.mean_rms, verdict.c_str());
   return b;
 }
 
@@ -85,6 +132,7 @@ TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) 
   j.set("cpu_s", r.cpu_s);
   if (!r.start_rms.empty()) j.set("start_rms_m", *std::max_element(r.start_rms.begin(), r.start_rms.end()));
   if (!r.final_rms.empty()) j.set("final_rms_m", *std::max_element(r.final_rms.begin(), r.final_rms.end()));
+  if (!r.final_rms.empty()) j.set("error_budget", fit_error_budget(c, p, r));
   j.set("created", utc_now());
   add_provenance(j);
   write_file_atomically(c.out_dir / "fit.json", j.dump());

@@ -112,4 +112,22 @@ std::vector<RecordedFrame> read_run_frames(const std::filesystem::path& run_dir)
   return frames;
 }
 
+std::optional<double> read_run_time_error(const std::filesystem::path& run_dir) {
+  std::ifstream in(run_dir / "summary.json");
+  if (!in) return std::nullopt;
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string s = text.str();
+  // The estimate is a flat object: its first "}" ends it.
+  const size_t start = s.find("\"time_error\": {");
+  if (start == std::string::npos) return std::nullopt;
+  const size_t end = s.find('}', start), key = s.find("\"mean_rms_m\": ", start);
+  if (key == std::string::npos || key > end) return std::nullopt;
+  const char* number = s.c_str() + key + std::string("\"mean_rms_m\": ").size();
+  char* stop = nullptr;
+  const double value = std::strtod(number, &stop);
+  if (stop == number) return std::nullopt;
+  return value;
+}
+
 }  // namespace wl

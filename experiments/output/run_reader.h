@@ -4,6 +4,7 @@
 // "u", "v"). Only the project's own output format is understood.
 #pragma once
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -25,5 +26,10 @@ class RunReadError : public std::invalid_argument {  // bad input: exit 2
 // Frames in the order of run.pvd; throws RunReadError naming the file and what
 // is wrong (missing, not a run folder, malformed, point counts that differ).
 std::vector<RecordedFrame> read_run_frames(const std::filesystem::path& run_dir);
+
+// The mean over frames of the RMS time error a run estimated (summary.json,
+// "time_error": {"mean_rms_m": …}, written by `run --error-estimate`) [m];
+// nullopt when the run has no summary or no estimate.
+std::optional<double> read_run_time_error(const std::filesystem::path& run_dir);
 
 }  // namespace wl

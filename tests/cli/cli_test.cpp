@@ -297,6 +297,8 @@ TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
       {"--starts 0", "--starts: need at least 1"},
       {"--loss weird", "--loss: got 'weird'"},
       {"--validate missing.toml", "missing.toml"},
+      {"--resolution coarse", "--resolution: got 'coarse', expected 'controlled' or 'scene'"},
+      {"--rtol 2", "--rtol: got 2"},
   };
   for (const auto& [args, fragment] : cases) {
     Result r = run_cli("calibrate '" + kHangingWind + "' " + args + " --out '" + out.string() + "'", dir_);
@@ -320,6 +322,7 @@ TEST_F(Cli, CalibrateWritesAParameterFileThatRunReads) {
   const std::string record = file_text(out / "calibration.json");
   EXPECT_NE(record.find("\"yarn_time_error\""), std::string::npos);
   EXPECT_NE(record.find("\"budget\""), std::string::npos);
+  EXPECT_NE(record.find("\"resolution\": \"sdirk2 under error control"), std::string::npos);
   const fs::path run = dir_ / "run";
   r = run_cli("run '" + kHangingWind + "' --model fem --duration 0.01 --quiet --fem-params '" +
                   (out / "params.toml").string() + "' --out '" + run.string() + "'",

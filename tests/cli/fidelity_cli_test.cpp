@@ -47,6 +47,11 @@ TEST_F(FidelityCli, ToleranceMustBePositive) {
   expect_refused("--tolerance nan", {"--tolerance", "nan"});
 }
 
+TEST_F(FidelityCli, ResolutionMustBeKnown) {
+  expect_refused("--resolution fine", {"--resolution", "'fine'", "'controlled' or 'scene'"});
+  expect_refused("--rtol 0", {"--rtol", "got 0"});
+}
+
 TEST_F(FidelityCli, ContinuumReferenceIsRefused) {
   expect_refused("--reference fem_s1", {"--reference", "fem_s1", "yarn-level variant"});
 }
@@ -78,6 +83,12 @@ TEST_F(FidelityCli, WritesTheLadderAndNamesTheCheapestVariant) {
   EXPECT_EQ(variants, (std::vector<std::string>{"full", "frozen_sliding", "fem_first_guess"}));
   EXPECT_NE(r.output.find("cloth): " + cheapest + ","), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(out() / "fidelity.json"));
+  // Each row carries its own time error; the record says at which resolution the rungs ran.
+  std::stringstream json;
+  json << std::ifstream(out() / "fidelity.json").rdbuf();
+  for (const char* field :
+       {"\"resolution\": \"sdirk2 under error control, rtol 0.0001", "\"time_error\"", "\"method\": \"richardson\""})
+    EXPECT_NE(json.str().find(field), std::string::npos) << field;
   const Result plot = wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
                                             "/experiments/plot_fidelity.py' '" + out().string() + "'");
   EXPECT_EQ(plot.exit_code, 0) << plot.output;

@@ -18,8 +18,8 @@ class FitCli : public ::testing::Test {
   void SetUp() override {
     scene_ = dir_ / "small.toml";
     std::ofstream(scene_) << test::hanging_cloth_toml(5, 0.02, "be-newton");
-    const auto r =
-        cli("run " + test::shell_quote(scene_.string()) + " --quiet --out " + test::shell_quote(target().string()));
+    const auto r = cli("run " + test::shell_quote(scene_.string()) + " --error-estimate --quiet --out " +
+                       test::shell_quote(target().string()));
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   static test::CommandResult cli(const std::string& args) {
@@ -42,7 +42,10 @@ TEST_F(FitCli, RecoversTheShearModulusOfItsOwnRun) {
   std::stringstream json;
   json << std::ifstream(out / "fit.json").rdbuf();
   for (const char* field : {"\"parameters\"", "\"key\": \"contact.shear_modulus_Pa\"", "\"start\": 1500",
-                            "\"std_error\"", "\"correlation\"", "\"simulations\"", "\"cpu_s\"", "\"git_revision\""})
+                            "\"std_error\"", "\"correlation\"", "\"simulations\"", "\"cpu_s\"", "\"git_revision\"",
+                            "\"fitted_time_error\"", "\"method\": \"richardson\"", "\"target_time_error_mean_rms_m\": ",
+                            // the fit recovers the target's own parameters: the distance is far below either time error
+                            "\"verdict\": \"time error exceeds the distance\""})
     EXPECT_NE(json.str().find(field), std::string::npos) << field << "\n" << json.str();
   EXPECT_NE(r.output.find("contact.shear_modulus_Pa = 1000"), std::string::npos) << r.output;  // the scene default
 }

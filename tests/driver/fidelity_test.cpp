@@ -1,6 +1,8 @@
 // The fidelity ladder (docs/design.md §7.5) on 5×5 cloths of 50 ms: the
 // reference and its aliases measure zero, a term that does nothing measures at
-// round-off, a simplification that matters does not; the plan refuses bad input.
+// round-off, a simplification that matters does not; the time rungs measure
+// their own time error against a controlled reference; a time error above the
+// tolerance is not within it; the plan refuses bad input.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -44,6 +46,8 @@ class Fidelity : public ::testing::Test {
     c.variants = std::move(variants);
     c.out_dir = dir_;
     c.progress = false;
+    c.resolution.scene = true;  // the model rungs at the scene's step, as written
+    c.error_estimate = false;
     return c;
   }
   const FidelityRow& row(const FidelityResult& r, const std::string& name) {
@@ -132,8 +136,8 @@ TEST_F(Fidelity, DefaultLadderLeavesOutWhatTheSceneCannotHave) {
   for (const auto& v : p.variants) run.push_back(v.name);
   for (const auto& [name, why] : p.left_out) out.push_back(name);
   EXPECT_EQ(run, (std::vector<std::string>{"no_friction", "no_parallel_contact", "linear_shear", "frozen_sliding",
-                                           "fem_first_guess"}));
-  EXPECT_EQ(out, (std::vector<std::string>{"fem_s1", "fem_s2", "fem_s4"}));
+                                           "fem_first_guess", "half_step", "quarter_step", "sdirk2_rtol_1e-3"}));
+  EXPECT_EQ(out, (std::vector<std::string>{"fem_s1", "fem_s2", "fem_s4", "scene_step"}));
   EXPECT_DOUBLE_EQ(p.cloth_size_m, 6e-3);
   EXPECT_DOUBLE_EQ(p.tolerance_m, 6e-5);  // 1 % of the cloth size
 }
@@ -165,6 +169,49 @@ TEST_F(Fidelity, PlanRefusesBadInput) {
   c.repeats = 0;
   refused(c, "--repeats");
   EXPECT_FALSE(fs::exists(dir_));
+}
+
+TEST_F(Fidelity, TimeRungsMeasureTheirStepAgainstAControlledReference) {
+  FidelityConfig c = config(sliding_in_wind(), {"scene_step", "half_step", "quarter_step"});
+  c.resolution = {false, 1e-7};  // the reference: sdirk2 at rtol 1e-7
+  c.error_estimate = true;
+  const FidelityResult r = run_fidelity(c, plan_fidelity(c));
+  const FidelityRow& ref = row(r, "full");
+  ASSERT_EQ(ref.time_error_method, "richardson");
+  const double d1 = row(r, "scene_step").rms_m, d2 = row(r, "half_step").rms_m, d4 = row(r, "quarter_step").rms_m;
+  SCOPED_TRACE(testing::Message() << "distances " << d1 << " " << d2 << " " << d4 << ", reference's own "
+                                  << ref.time_error_mean_rms_m);
+  EXPECT_LT(ref.time_error_worst_frame_rms_m, 0.02 * row(r, "quarter_step").worst_frame_rms_m);
+  // backward Euler is first order: halving the step halves the distance (to ± 20 %)
+  EXPECT_NEAR(d1 / d2, 2.0, 0.4);
+  EXPECT_NEAR(d2 / d4, 2.0, 0.4);
+  // each rung's own estimate matches its distance to the controlled reference (within 1.5×)
+  for (const char* name : {"scene_step", "half_step", "quarter_step"}) {
+    const FidelityRow& x = row(r, name);
+    EXPECT_EQ(x.time_error_method, "richardson") << name;
+    EXPECT_GT(x.time_error_worst_frame_rms_m / x.worst_frame_rms_m, 1 / 1.5) << name;
+    EXPECT_LT(x.time_error_worst_frame_rms_m / x.worst_frame_rms_m, 1.5) << name;
+  }
+}
+
+TEST(FidelityChoice, ATimeErrorAboveTheToleranceIsNotWithinIt) {
+  auto make = [](const std::string& name, double cpu, double distance, double time_error) {
+    FidelityRow r;
+    r.variant = name;
+    r.outcome = "ok";
+    r.compared_fraction = 1;
+    r.cpu_s = cpu;
+    r.worst_frame_rms_m = distance;
+    r.time_error_worst_frame_rms_m = time_error;
+    return r;
+  };
+  std::vector<FidelityRow> rows{make("full", 10, 0, 1e-6), make("cheap_but_unresolved", 1, 5e-5, 2e-4),
+                                make("resolved", 4, 8e-5, 1e-5), make("not_estimated", 6, 9e-5, NAN)};
+  EXPECT_EQ(cheapest_within(rows, 1e-4).variant, "resolved");
+  EXPECT_DOUBLE_EQ(cheapest_within(rows, 1e-4).speedup, 2.5);
+  EXPECT_EQ(cheapest_within(rows, 1e-3).variant, "cheap_but_unresolved");
+  rows[2].time_error_worst_frame_rms_m = 2e-4;
+  EXPECT_EQ(cheapest_within(rows, 1e-4).variant, "not_estimated");
 }
 
 TEST(ParetoFront, KeepsExactlyTheUndominatedPoints) {
