@@ -12,6 +12,7 @@
 #include "calibration/scene_parameters.h"
 #include "experiments/driver/calibrate.h"
 #include "experiments/driver/determinism.h"
+#include "experiments/driver/diagnose.h"
 #include "experiments/driver/fidelity.h"
 #include "experiments/driver/fit_command.h"
 #include "experiments/driver/interrupt.h"
@@ -263,6 +264,24 @@ int main(int argc, char** argv) {
   fit->add_option("--out", fit_out, "Output folder (default results/fit/<scene name>)");
   fit->add_flag("--quiet", fit_quiet, "No progress on stderr");
 
+  wl::DiagnoseConfig diag;
+  std::string diag_scene, diag_params, diag_out, diag_resolution = "controlled";
+  double diag_duration = 0, diag_rtol = 1e-4;
+  bool diag_quiet = false, diag_no_estimate = false;
+  auto* diagnose = app.add_subcommand(
+      "diagnose",
+      "Run the yarn level and the continuum on one scene and show where and when they part: energies per "
+      "term, distance per crossing (VTU), by row and over time, each side's time error");
+  diagnose->add_option("scene", diag_scene, "Scene file (TOML)")->required();
+  diagnose->add_option("--fem-params", diag_params,
+                       "Continuum parameter file (default: the scene's, or the first guess)");
+  diagnose->add_option("--duration", diag_duration, "Simulated time [s] (overrides the scene)");
+  diagnose->add_option("--resolution", diag_resolution, kResolutionHelp)->capture_default_str();
+  diagnose->add_option("--rtol", diag_rtol, "Tolerance of the controlled resolution")->capture_default_str();
+  diagnose->add_flag("--no-error-estimate", diag_no_estimate, "Do not estimate the runs' time errors");
+  diagnose->add_option("--out", diag_out, "Output folder (default results/diagnose/<scene name>)");
+  diagnose->add_flag("--quiet", diag_quiet, "No progress on stderr");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -377,6 +396,33 @@ int main(int argc, char** argv) {
         throw;
       } catch (const std::runtime_error& e) {
         std::cerr << "weavelab: fidelity: " << e.what() << "\n";
+        return 1;
+      }
+    }
+    if (*diagnose) {
+      diag.scene_path = diag_scene;
+      diag.scene = wl::load_scene(diag_scene);
+      if (diagnose->count("--duration")) wl::apply_duration_override(diag.scene, diag_duration, diag.overrides);
+      wl::check_run_settings(diag.scene, diag.overrides);
+      if (!diag_params.empty()) diag.fem_params = diag_params;
+      diag.resolution = wl::parse_resolution("--resolution", diag_resolution, diag_rtol);
+      diag.error_estimate = !diag_no_estimate;
+      diag.out_dir =
+          wl::output_folder(diagnose->count("--out") ? std::optional(diag_out) : std::nullopt,
+                            std::filesystem::path("results/diagnose") / std::filesystem::path(diag_scene).stem());
+      diag.progress = !diag_quiet;
+      try {
+        const wl::DiagnoseResult r = wl::run_diagnosis(diag);
+        std::fprintf(stderr,
+                     "weavelab: diagnose: distance %.3g mm mean RMS (border %.3g mm, interior %.3g mm); time error "
+                     "yarn %.3g mm, continuum %.3g mm: %s; results in %s\n",
+                     1e3 * r.mean_rms_m, 1e3 * r.border_rms_m, 1e3 * r.interior_rms_m, 1e3 * r.yarn_time_error_m,
+                     1e3 * r.fem_time_error_m, r.verdict.c_str(), diag.out_dir.string().c_str());
+        return 0;
+      } catch (const std::filesystem::filesystem_error&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        std::cerr << "weavelab: diagnose: " << e.what() << "\n";
         return 1;
       }
     }

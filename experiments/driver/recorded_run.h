@@ -53,6 +53,9 @@ struct RecordOptions {
   std::string label;      // prefix of the progress lines
   // Called with every recorded output frame (after the trajectory column is stored).
   std::function<void(const Frame&)> on_frame;
+  // Called after every accepted step with the model and the state at its end
+  // (inside the timed section: a diagnostic, not for timed runs).
+  std::function<void(Model&, double t, const Vec& q, const Vec& v)> on_step;
   bool energies = false;   // fill RecordedRun::kinetic_J and potential_J
   bool step_ends = false;  // fill RecordedRun::step_ends
   // Step ends to take one fixed step each, in increasing order and holding every

@@ -192,6 +192,31 @@ double Assembly::energy(const Vec& q, const Vec& constants) const {
   return total;
 }
 
+void Assembly::term_energies_and_powers(const Vec& q, const Vec& v, const Vec& constants, std::vector<double>& energy,
+                                        std::vector<double>& power) const {
+  energy.assign(plans_.size(), 0.0);
+  power.assign(plans_.size(), 0.0);
+  std::vector<double> ql, vl, fl;
+  for (size_t k = 0; k < plans_.size(); ++k) {
+    const Term& term = *plans_[k].term;
+    const int n = plans_[k].n;
+    ql.resize(n);
+    vl.resize(n);
+    fl.resize(n);
+    for (int e = 0; e < term.num_elements(); ++e) {
+      auto s = term.stencil(e);
+      for (int a = 0; a < n; ++a) {
+        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
+        vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
+      }
+      if (term.conservative()) energy[k] += term.energy(e, ql.data());
+      std::fill(fl.begin(), fl.end(), 0.0);
+      term.evaluate(e, ql.data(), vl.data(), ElementOutput{fl.data()});
+      for (int a = 0; a < n; ++a) power[k] += fl[a] * vl[a];
+    }
+  }
+}
+
 bool Assembly::add_parameter_derivative(const std::string& key, const Vec& q, const Vec& v, const Vec& constants,
                                         Vec& dfdp) const {
   bool any = false;

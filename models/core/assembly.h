@@ -40,6 +40,11 @@ class Assembly {
 
   // Potential energy of all conservative terms.
   double energy(const Vec& q, const Vec& constants) const;
+  // Per term, in the order given to the constructor: its energy (conservative
+  // terms; 0 otherwise) and the power of its force, Σ_e f_e · v_e [J, W]. The
+  // terms must have been prepared at (q, v) (Model::evaluate does it).
+  void term_energies_and_powers(const Vec& q, const Vec& v, const Vec& constants, std::vector<double>& energy,
+                                std::vector<double>& power) const;
 
   // Adds ∂f/∂p for the parameter `key` (Term::parameter_keys()) of every term
   // that depends on it into `dfdp`; returns whether any term does.

@@ -69,6 +69,23 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
   }
 }
 
+std::vector<TermModel::TermReading> TermModel::term_readings(double t, const Vec& q, const Vec& v, bool prepare) {
+  Evaluation scratch;
+  if (prepare) evaluate(t, q, v, kForce, scratch);  // prepares every term at (t, q, v)
+  std::vector<double> energy, power;
+  assembly_->term_energies_and_powers(q, v, constants_, energy, power);
+  std::vector<TermReading> out;
+  for (size_t k = 0; k < terms_.size(); ++k) {
+    auto it = std::find_if(out.begin(), out.end(), [&](const TermReading& r) { return r.name == terms_[k]->name(); });
+    if (it == out.end()) it = out.insert(out.end(), TermReading{terms_[k]->name()});
+    it->energy_J += energy[k];
+    it->power_W += power[k];
+    it->mass = it->mass || terms_[k]->provides_mass();
+    it->conservative = it->conservative && terms_[k]->conservative() && !it->mass;
+  }
+  return out;
+}
+
 double TermModel::potential_energy(const Vec& q) const { return assembly_->energy(q, constants_); }
 
 void TermModel::accept_step(double t, const Vec& q, const Vec& v, double h) {

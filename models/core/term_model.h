@@ -2,6 +2,7 @@
 // and FEM models derive from it and only build their terms and frames.
 #pragma once
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "models/core/assembly.h"
@@ -27,6 +28,17 @@ class TermModel : public Model {
   void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const override;
 
   const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
+  // Per term name (terms of one name summed, in the order of terms()): the
+  // potential energy and the power of the force at (t, q, v) [J, W]. The terms'
+  // frozen inputs (contact normal forces) are taken at (t, q, v), or kept from
+  // the last evaluation when `prepare` is false.
+  struct TermReading {
+    std::string name;
+    double energy_J = 0.0, power_W = 0.0;
+    bool conservative = true;  // energy_J is the term's potential
+    bool mass = false;         // provides the mass: its energy is the kinetic one
+  };
+  std::vector<TermReading> term_readings(double t, const Vec& q, const Vec& v, bool prepare = true);
   const Vec& constants() const { return constants_; }
 
  protected:
