@@ -87,11 +87,14 @@ std::vector<double> surface_distances(const FemModel& geometry, const Points& x,
 
 // Runs a scene `repeats` times: the first run's record (measured through
 // `record`), with CPU and wall time the medians over all runs.
-RecordedRun timed_runs(const Scene& s, const std::string& model, const RecordOptions& record, int repeats) {
-  RecordedRun first = run_recorded(s, model, s.integrator, scene_integrator_options(s), record);
+RecordedRun timed_runs(const Scene& s, const std::string& model, const RecordOptions& record, int repeats,
+                       long max_steps = IntegratorOptions{}.max_steps) {
+  IntegratorOptions options = scene_integrator_options(s);
+  options.max_steps = max_steps;
+  RecordedRun first = run_recorded(s, model, s.integrator, options, record);
   std::vector<double> cpu{first.cpu_s}, wall{first.wall_s};
   for (int i = 1; i < repeats && first.result.outcome == Outcome::ok; ++i) {
-    const RecordedRun again = run_recorded(s, model, s.integrator, scene_integrator_options(s));
+    const RecordedRun again = run_recorded(s, model, s.integrator, options);
     cpu.push_back(again.cpu_s);
     wall.push_back(again.wall_s);
   }
@@ -298,7 +301,9 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
       ++k;
     };
     if (c.progress) std::fprintf(stderr, "fidelity: %s (%s)\n", pv.name.c_str(), pv.variant.model.c_str());
-    const RecordedRun run = timed_runs(vs, pv.variant.model, vr, c.repeats);
+    // A rung that runs away under error control shrinks its steps instead of
+    // leaving its bounds: it stops at 20× the reference's steps (outcome max_steps).
+    const RecordedRun run = timed_runs(vs, pv.variant.model, vr, c.repeats, 20 * rr.stats.steps + 1000);
     FidelityRow row = row_of(pv, run);
     tally.fill(row, ref);
     row.energy_diff_J = max_energy_difference(run, ref);
