@@ -385,6 +385,14 @@ int main(int argc, char** argv) {
       try {
         const wl::FidelityResult r = wl::run_fidelity(fid, plan);
         const wl::FidelityChoice& c = r.within_tolerance;
+        if (c.variant.empty()) {
+          std::fprintf(stderr,
+                       "weavelab: fidelity: no variant is within %.3g mm (%.3g %% of the %.3g mm cloth) with its own "
+                       "time error; results in %s\n",
+                       1e3 * c.tolerance_m, 100 * c.tolerance_m / plan.cloth_size_m, 1e3 * plan.cloth_size_m,
+                       fid.out_dir.string().c_str());
+          return 0;
+        }
         std::fprintf(stderr,
                      "weavelab: fidelity: cheapest within %.3g mm (%.3g %% of the %.3g mm cloth): %s, %.3g x "
                      "faster than %s (CPU %.3g s against %.3g s); results in %s\n",
