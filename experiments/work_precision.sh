@@ -8,19 +8,18 @@
 # revision and machine; work_precision.png/.svg; slopes.csv). The references are
 # cached under results/reference/ (about 13 min each the first time), so a rerun
 # only runs the ladders (about 15 min on the 2-core machine).
-# WL_SCENE and WL_OUT change the scene and folder; extra arguments replace the
-# options below and go to `weavelab work-precision` (e.g. WL_SCENE=
-# experiments/scenes/work_precision_17.toml with no options: every integrator
-# over 8 ms).
+# A Snakemake workflow (experiments/work_precision/Snakefile): one job per model
+# and integrator, locally on every core, cached by the scene's hash, so a rerun
+# only runs what changed. WL_SCENE and WL_OUT change the scene and folder,
+# WL_OPTIONS replaces the options of `weavelab work-precision` below (e.g. WL_SCENE=
+# experiments/scenes/work_precision_17.toml WL_OPTIONS=" " WL_INTEGRATORS=be-linear,sdirk2,ida,symplectic);
+# extra arguments go to snakemake (e.g. --profile experiments/profiles/cluster).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-tools/setup.sh
-scene=${WL_SCENE:-experiments/scenes/hanging_wind_frozen.toml}
-out=${WL_OUT:-results/work_precision}
+tools/setup.sh >/dev/null
+config=(scene="${WL_SCENE:-experiments/scenes/hanging_wind_frozen.toml}" out="${WL_OUT:-results/work_precision}")
+if [ -n "${WL_OPTIONS:-}" ]; then config+=(options="$WL_OPTIONS"); fi
+if [ -n "${WL_INTEGRATORS:-}" ]; then config+=(integrators="$WL_INTEGRATORS"); fi
 start=$(date +%s)
-defaults=(--models yarn,fem --integrators be-linear,sdirk2,ida --rtols 1e-3,1e-4,1e-5,1e-6 --dt-max 0.002
-          --dt-min 0.0000625 --budget 90 --reference-rtols 1e-8)
-if [ $# -gt 0 ]; then defaults=(); fi  # extra arguments replace the defaults above
-build/weavelab work-precision "$scene" --out "$out" "${defaults[@]}" "$@"
-/usr/bin/python3 experiments/plot_work_precision.py "$out"
-echo "work-precision: $(( $(date +%s) - start )) s wall (without the build); results in $out"
+snakemake -s experiments/work_precision/Snakefile --cores "$(nproc)" --config "${config[@]}" "$@"
+echo "work-precision: $(( $(date +%s) - start )) s wall (without the build); results in ${WL_OUT:-results/work_precision}"

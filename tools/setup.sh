@@ -10,7 +10,8 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libsuitesparse-dev libopenblas-dev
           libtomlplusplus-dev libcli11-dev libgtest-dev libsundials-dev libceres-dev
-          python3 python3-numpy python3-meshio python3-matplotlib)
+          python3 python3-numpy python3-meshio python3-matplotlib
+          python3-dev pybind11-dev snakemake)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,7 +1,5 @@
 #include "experiments/driver/interrupt.h"
 
-#include <csignal>
-
 namespace wl {
 namespace {
 
@@ -9,13 +7,19 @@ volatile std::sig_atomic_t g_signal = 0;
 
 extern "C" void record_signal(int sig) { g_signal = sig; }
 
-}  // namespace
-
-void install_interrupt_handlers() {
+// Records the signal; a second one takes the default action.
+struct sigaction recording_action() {
   struct sigaction sa {};
   sa.sa_handler = record_signal;
   sigemptyset(&sa.sa_mask);
-  sa.sa_flags = SA_RESETHAND | SA_RESTART;  // a second signal takes the default action
+  sa.sa_flags = SA_RESETHAND | SA_RESTART;
+  return sa;
+}
+
+}  // namespace
+
+void install_interrupt_handlers() {
+  const struct sigaction sa = recording_action();
   sigaction(SIGINT, &sa, nullptr);
   sigaction(SIGTERM, &sa, nullptr);
   struct sigaction ignore {};
@@ -27,5 +31,17 @@ void install_interrupt_handlers() {
 int interrupt_signal() { return g_signal; }
 
 int interrupted_exit_code(int signal) { return 128 + signal; }
+
+InterruptScope::InterruptScope() {
+  g_signal = 0;
+  const struct sigaction sa = recording_action();
+  sigaction(SIGINT, &sa, &host_int_);
+  sigaction(SIGTERM, &sa, &host_term_);
+}
+
+InterruptScope::~InterruptScope() {
+  sigaction(SIGINT, &host_int_, nullptr);
+  sigaction(SIGTERM, &host_term_, nullptr);
+}
 
 }  // namespace wl

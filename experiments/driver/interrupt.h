@@ -5,6 +5,7 @@
 // once (default action). SIGPIPE is ignored, so a closed stderr pipe only
 // silences the progress and never loses the record.
 #pragma once
+#include <csignal>
 
 namespace wl {
 
@@ -13,5 +14,21 @@ void install_interrupt_handlers();
 int interrupt_signal();
 // Conventional exit status of a process ended by `signal`: 128 + signal.
 int interrupted_exit_code(int signal);
+
+// For a run inside a host process that has its own handlers (the Python
+// module): install_interrupt_handlers() for the object's lifetime, with the
+// recorded signal cleared first; the host's SIGINT and SIGTERM handlers come
+// back afterwards. SIGPIPE is left as the host set it.
+class InterruptScope {
+ public:
+  InterruptScope();
+  ~InterruptScope();
+  InterruptScope(const InterruptScope&) = delete;
+  InterruptScope& operator=(const InterruptScope&) = delete;
+
+ private:
+  struct sigaction host_int_ {};
+  struct sigaction host_term_ {};
+};
 
 }  // namespace wl

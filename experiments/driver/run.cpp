@@ -11,6 +11,7 @@
 #include "experiments/driver/interrupt.h"
 #include "experiments/driver/run_settings.h"
 #include "experiments/driver/run_summary.h"
+#include "experiments/output/atomic_file.h"
 #include "experiments/output/metrics_csv.h"
 #include "experiments/output/pvd_series.h"
 #include "experiments/output/run_folder.h"
@@ -90,10 +91,17 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   iopt.rtol = scene.rtol;
   iopt.atol = scene.atol;
 
-  RunFolder folder(options.out_dir, written_by_a_run);
-  PvdSeries series(options.out_dir, "run");
-  MetricsCsv metrics(options.out_dir / "metrics.csv",
-                     {"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters", "step_wall_s"});
+  const bool writes = !options.out_dir.empty();
+  std::optional<RunFolder> folder;
+  std::optional<PvdSeries> series;
+  std::optional<MetricsCsv> metrics;
+  if (writes) {
+    folder.emplace(options.out_dir, written_by_a_run);
+    series.emplace(options.out_dir, "run");
+    metrics.emplace(options.out_dir / "metrics.csv",
+                    std::vector<std::string>{"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters",
+                                             "step_wall_s"});
+  }
   if (options.progress)
     std::fprintf(stderr, "weavelab: %s model, %d DoFs, %s, dt = %g s, %g s simulated -> %s\n", model->name().c_str(),
                  model->num_dofs(), scene.integrator.c_str(), scene.dt_s, scene.duration_s,
@@ -111,15 +119,17 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   };
   auto add_frame = [&](Frame f) {
     keep_frame(f);
-    series.add(f);
+    if (series) series->add(f);
+    if (options.on_frame) options.on_frame(f);
   };
   integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
   Evaluation scratch;
   auto metrics_row = [&](double t, int iters, double wall) {
+    if (!metrics) return;
     const Vec& q = integrator->q();
     const Vec& v = integrator->v();
-    metrics.row({t, kinetic_energy(*model, t, q, v, scratch), model->potential_energy(q), model->max_node_speed(v),
-                 double(iters), wall});
+    metrics->row({t, kinetic_energy(*model, t, q, v, scratch), model->potential_energy(q), model->max_node_speed(v),
+                  double(iters), wall});
   };
   integrator->on_step = [&](const StepRecord& r) {
     metrics_row(r.t, r.nonlinear_iters, r.wall_s);
@@ -156,7 +166,7 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
     }
   }
   progress.update(integrator->t(), integrator->stats().steps, true);
-  metrics.commit();
+  if (metrics) metrics->commit();
   rep.stats = integrator->stats();
   rep.end_time = integrator->t();
   rep.accuracy = std::move(accuracy);
@@ -178,7 +188,8 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
       std::fprintf(stderr, "weavelab: no time error estimate: the second run ended %s: %s\n",
                    to_string(rep.time_error->second_run.outcome), rep.time_error->second_run.message.c_str());
   }
-  write_run_summary(options.out_dir / "summary.json", scene, options, *model, *integrator, rep);
+  rep.summary_json = run_summary_json(scene, options, *model, *integrator, rep);
+  if (writes) write_file_atomically(options.out_dir / "summary.json", rep.summary_json);
   return rep;
 }
 

@@ -4,6 +4,7 @@
 // summary; it is not an exception.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -17,9 +18,11 @@ namespace wl {
 
 struct RunOptions {
   std::string model = "yarn";
-  std::filesystem::path out_dir;
+  std::filesystem::path out_dir;  // empty: a run in memory, nothing written (RunReport::summary_json only)
   bool progress = true;
   std::map<std::string, std::string> overrides;  // command-line values that replaced scene values
+  // Called with every output frame, t = 0 included, as it is written.
+  std::function<void(const Frame&)> on_frame;
 };
 
 struct RunReport {
@@ -31,9 +34,11 @@ struct RunReport {
   std::optional<TimeErrorEstimate> time_error;
   // Scene key time.accuracy_m (--accuracy): the choice made before the run.
   std::optional<AccuracyChoice> accuracy;
+  std::string summary_json;  // the text of summary.json
 };
 
-// With time.accuracy_m set, the integrator and tolerance are chosen first
+// The frames, metrics.csv and summary.json go to options.out_dir (README,
+// "Using it"). With time.accuracy_m set, the integrator and tolerance are chosen first
 // (choose_for_accuracy, runs in memory) and the written run uses them.
 RunReport run_scene(const Scene& scene, const RunOptions& options);
 

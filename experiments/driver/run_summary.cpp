@@ -2,12 +2,11 @@
 
 #include "experiments/driver/experiment_meta.h"
 #include "experiments/driver/memory_estimate.h"
-#include "experiments/output/atomic_file.h"
 
 namespace wl {
 
-void write_run_summary(const std::filesystem::path& path, const Scene& scene, const RunOptions& options,
-                       const Model& model, const Integrator& integrator, const RunReport& report) {
+std::string run_summary_json(const Scene& scene, const RunOptions& options, const Model& model,
+                             const Integrator& integrator, const RunReport& report) {
   Json j = Json::object();
   Json s = scene_json(scene.source, scene.text, scene, options.overrides);
   s.set("dt_s", scene.dt_s);
@@ -41,7 +40,7 @@ void write_run_summary(const std::filesystem::path& path, const Scene& scene, co
   if (report.accuracy) j.set("accuracy", report.accuracy->to_json());
   add_provenance(j);
   j.set("finished_utc", utc_now());
-  write_file_atomically(path, j.dump());
+  return j.dump();
 }
 
 }  // namespace wl

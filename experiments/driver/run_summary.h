@@ -1,7 +1,7 @@
 // The run summary JSON: scene, model, integrator, options, statistics,
 // outcome, git revision and machine (docs/design.md §9).
 #pragma once
-#include <filesystem>
+#include <string>
 
 #include "experiments/driver/run.h"
 #include "integrators/integrator.h"
@@ -9,7 +9,8 @@
 
 namespace wl {
 
-void write_run_summary(const std::filesystem::path& path, const Scene& scene, const RunOptions& options,
-                       const Model& model, const Integrator& integrator, const RunReport& report);
+// The summary's JSON text.
+std::string run_summary_json(const Scene& scene, const RunOptions& options, const Model& model,
+                             const Integrator& integrator, const RunReport& report);
 
 }  // namespace wl

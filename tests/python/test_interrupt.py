@@ -1,0 +1,36 @@
+"""Ctrl-C during a run from Python: the step under way ends, the run stops and
+weavelab.Interrupted carries the frames so far, as the command line keeps its record."""
+import os
+import signal
+import subprocess
+import sys
+import time
+import unittest
+
+SCRIPT = """
+import sys, weavelab, support
+scene = support.small_scene(weavelab, size=9, duration=100.0)
+print("running", flush=True)
+try:
+    weavelab.run(scene)
+except weavelab.Interrupted as e:
+    print("interrupted", e.run.outcome, len(e.run.times) >= 1, e.run.end_time > 0, flush=True)
+    sys.exit(5)
+print("finished")
+"""
+
+
+class Interrupt(unittest.TestCase):
+    def test_sigint_ends_the_run_with_its_record(self):
+        p = subprocess.Popen([sys.executable, "-c", SCRIPT], stdout=subprocess.PIPE, text=True,
+                             cwd=os.path.dirname(os.path.abspath(__file__)))
+        self.assertEqual(p.stdout.readline().strip(), "running")
+        time.sleep(1.0)
+        p.send_signal(signal.SIGINT)
+        out, _ = p.communicate(timeout=120)
+        self.assertEqual(p.returncode, 5, out)
+        self.assertEqual(out.strip(), "interrupted interrupted True True")
+
+
+if __name__ == "__main__":
+    unittest.main()
