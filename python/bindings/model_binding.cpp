@@ -11,6 +11,7 @@
 #include "experiments/driver/run_settings.h"
 #include "integrators/integrator.h"
 #include "models/model_factory.h"
+#include "python/bindings/errors.h"
 #include "python/bindings/frames.h"
 #include "python/bindings/interruption.h"
 #include "python/bindings/scene_binding.h"
@@ -61,7 +62,12 @@ py::dict outcome_dict(const StepResult& r) {
 class Simulation {
  public:
   Simulation(const SceneHandle& scene, const std::string& model_name) : model_(std::make_shared<ModelHandle>()) {
-    check_run_settings(scene.scene, {});
+    try {
+      check_run_settings(scene.scene, {});
+    } catch (const SceneError& e) {
+      if (!scene.edited) throw;
+      raise_scene_error(e, scene.origin);  // the generated text's lines are not the user's
+    }
     check_run_memory(scene.scene, model_name);
     model_->model = make_model(scene.scene, model_name);
     check_linear_solver(scene.scene, *model_->model, {});

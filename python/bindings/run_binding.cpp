@@ -6,6 +6,7 @@
 
 #include "experiments/driver/run.h"
 #include "experiments/driver/run_settings.h"
+#include "python/bindings/errors.h"
 #include "python/bindings/frames.h"
 #include "python/bindings/interruption.h"
 #include "python/bindings/scene_binding.h"
@@ -36,7 +37,12 @@ py::dict run(const SceneHandle& handle, const std::string& model, const std::opt
   RunOptions opt;
   opt.model = model;
   opt.progress = progress;
-  apply_run_overrides(scene, ov, opt.overrides);  // the command line's rules, the forgiving one included
+  try {
+    apply_run_overrides(scene, ov, opt.overrides);  // the command line's rules, the forgiving one included
+  } catch (const SceneError& e) {
+    if (!handle.edited) throw;
+    raise_scene_error(e, handle.origin);  // the generated text's lines are not the user's
+  }
   if (out) opt.out_dir = output_folder(out, {});
   FrameStack frames;
   opt.on_frame = [&](const Frame& f) { frames.add(f); };

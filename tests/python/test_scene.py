@@ -91,6 +91,16 @@ class RunArguments(unittest.TestCase):
             weavelab.run(small_scene(weavelab), duration=0.002, output_interval=0.004)
         self.assertIn("argument '", str(e.exception))
 
+    def test_unknown_integrator_in_an_edited_scene(self):
+        scene = small_scene(weavelab)
+        scene["time.integrator"] = "leapfrog"  # a name only the run checks
+        with self.assertRaises(weavelab.SceneError) as e:
+            weavelab.run(scene)
+        self.assertEqual((e.exception.key, e.exception.line), ("time.integrator", 0))
+        self.assertIn("leapfrog", str(e.exception))
+        with self.assertRaises(weavelab.SceneError):
+            weavelab.Simulation(scene)
+
     def test_bad_argument_names_it(self):
         with self.assertRaises(weavelab.SettingError) as e:
             weavelab.run(small_scene(weavelab), dt=float("nan"))
