@@ -25,7 +25,7 @@ class Interrupt(unittest.TestCase):
         p = subprocess.Popen([sys.executable, "-c", SCRIPT], stdout=subprocess.PIPE, text=True,
                              cwd=os.path.dirname(os.path.abspath(__file__)))
         self.assertEqual(p.stdout.readline().strip(), "running")
-        time.sleep(1.0)
+        time.sleep(2.0)  # well inside the run (its set-up takes milliseconds)
         p.send_signal(signal.SIGINT)
         out, _ = p.communicate(timeout=120)
         self.assertEqual(p.returncode, 5, out)
