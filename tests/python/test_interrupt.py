@@ -20,16 +20,35 @@ print("finished")
 """
 
 
+STEPPING = """
+import sys, weavelab, support
+sim = weavelab.Simulation(support.small_scene(weavelab, size=9, duration=100.0))
+print("running", flush=True)
+try:
+    sim.advance_to(100.0)
+except weavelab.Interrupted:
+    print("interrupted", 0 < sim.t < 100.0, sim.stats()["steps"] > 0, flush=True)
+    sys.exit(5)
+print("finished")
+"""
+
+
 class Interrupt(unittest.TestCase):
-    def test_sigint_ends_the_run_with_its_record(self):
-        p = subprocess.Popen([sys.executable, "-c", SCRIPT], stdout=subprocess.PIPE, text=True,
+    def interrupt(self, script):
+        p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True,
                              cwd=os.path.dirname(os.path.abspath(__file__)))
         self.assertEqual(p.stdout.readline().strip(), "running")
         time.sleep(2.0)  # well inside the run (its set-up takes milliseconds)
         p.send_signal(signal.SIGINT)
         out, _ = p.communicate(timeout=120)
         self.assertEqual(p.returncode, 5, out)
-        self.assertEqual(out.strip(), "interrupted interrupted True True")
+        return out.strip()
+
+    def test_sigint_ends_the_run_with_its_record(self):
+        self.assertEqual(self.interrupt(SCRIPT), "interrupted interrupted True True")
+
+    def test_sigint_ends_manual_stepping_after_a_step(self):
+        self.assertEqual(self.interrupt(STEPPING), "interrupted True True")
 
 
 if __name__ == "__main__":
