@@ -467,9 +467,9 @@ int main(int argc, char** argv) {
         double lowest_mac = 1.0;
         for (const wl::ModePair& p : r.pairs) lowest_mac = std::min(lowest_mac, p.mac);
         std::fprintf(stderr,
-                     "weavelab: modes: lowest %.4g Hz (yarn), %.4g Hz (continuum); %zu pairs, lowest MAC %.3g; "
-                     "results in %s\n",
-                     wl::frequency_hz(r.yarn.modes.eigenvalues.front()),
+                     "weavelab: modes: equilibria %.3g mm apart (RMS over the crossings); lowest %.4g Hz (yarn), "
+                     "%.4g Hz (continuum); %zu pairs, lowest MAC %.3g; results in %s\n",
+                     1e3 * r.equilibrium_rms_m, wl::frequency_hz(r.yarn.modes.eigenvalues.front()),
                      wl::frequency_hz(r.fem.modes.eigenvalues.front()), r.pairs.size(), lowest_mac,
                      modc.out_dir.string().c_str());
         return 0;

@@ -235,6 +235,16 @@ ModesResult run_modes(const ModesConfig& c) {
                    out->asymmetry);
   }
   r.mac = mac_matrix(r.yarn.crossing_shapes, r.fem.crossing_shapes);
+  // How far apart the two equilibria are at the compared crossings.
+  double sum = 0;
+  for (const NodeRef& n : crossings) {
+    const double d =
+        (r.yarn.q.segment<3>(crossing_position_dof(*yarn, n)) - r.fem.q.segment<3>(crossing_position_dof(*fem, n)))
+            .norm();
+    sum += d * d;
+    r.equilibrium_max_m = std::max(r.equilibrium_max_m, d);
+  }
+  r.equilibrium_rms_m = std::sqrt(sum / double(crossings.size()));
   r.pairs = match_modes(r.mac);
 
   // Output, only after everything succeeded.
@@ -276,6 +286,8 @@ ModesResult run_modes(const ModesConfig& c) {
   j.set("linearized_about", "static equilibrium under gravity, wind off, v = 0 (Newton from the rest state)");
   j.set("continuum_parameters", c.fem_params ? c.fem_params->string() : "the scene's (first guess without a file)");
   j.set("compared_crossings", static_cast<int>(crossings.size()));
+  j.set("equilibria_rms_distance_m", r.equilibrium_rms_m);
+  j.set("equilibria_max_distance_m", r.equilibrium_max_m);
   j.set("yarn", model_json(r.yarn, yarn->num_dofs()));
   j.set("fem", model_json(r.fem, fem->num_dofs()));
   Json pairs = Json::array();

@@ -82,6 +82,8 @@ struct ModesConfig {
 struct ModesResult {
   LinearizedModes yarn, fem;
   Eigen::MatrixXd mac;  // yarn modes × continuum modes
+  // Distance between the two equilibria over the compared crossings: RMS and max [m].
+  double equilibrium_rms_m = 0.0, equilibrium_max_m = 0.0;
   std::vector<ModePair> pairs;
 };
 

@@ -28,7 +28,7 @@ class ModesCli : public ::testing::Test {
 TEST_F(ModesCli, WritesTheFilesAndTheChart) {
   const Result r = modes("--count 4");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("weavelab: modes: lowest "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("weavelab: modes: equilibria "), std::string::npos) << r.output;
   for (const char* f : {"modes.csv", "mac.csv", "modes_yarn.vtu", "modes_fem.vtu", "modes.json"})
     EXPECT_TRUE(fs::exists(out() / f)) << f;
   std::ifstream vtu(out() / "modes_yarn.vtu");
@@ -36,9 +36,10 @@ TEST_F(ModesCli, WritesTheFilesAndTheChart) {
   EXPECT_NE(text.find("\"mode_03\""), std::string::npos);
   EXPECT_NE(text.find("\"mode_03_slide\""), std::string::npos);
   const Result plot = wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
-                                            "/experiments/plot_modes.py' '" + out().string() + "'");
+                                            "/experiments/plot_modes.py' '" + out().string() + "' --shapes 2");
   EXPECT_EQ(plot.exit_code, 0) << plot.output;
   EXPECT_GT(fs::file_size(out() / "modes.png"), 1000u);
+  EXPECT_GT(fs::file_size(out() / "modes_shapes.png"), 1000u);
 }
 
 TEST_F(ModesCli, BadInputIsExit2AndWritesNothing) {

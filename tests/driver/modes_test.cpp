@@ -91,9 +91,10 @@ double out_of_plane(const Eigen::VectorXd& shape) {
 //   DoF map would break it;
 // - the lowest out-of-plane modes (the sway about the held corners) pair with
 //   MAC ≥ 0.6 (measured 0.72): at this size bending is as strong as the hang's
-//   tension over one spacing, and the continuum's diagonal hinges stiffen the
-//   twist that the yarn level resists only through shear (docs/models.md §10.4),
-//   so even the first sway differs; its frequency ratio is 1.39.
+//   tension over one spacing, and the continuum's diagonal hinges charge folds
+//   along a diagonal that the yarn level resists only through its yarns' bending
+//   and shear (docs/models.md §10.4), so even the first sway differs; its
+//   frequency ratio is 1.39.
 TEST(Modes, YarnLevelAndContinuumLowestModesPairUpOnASmallCloth) {
   const Scene scene = small_cloth(7);
   const LinearizedModes yarn = modes_of(scene, "yarn", 10), fem = modes_of(scene, "fem", 10);
