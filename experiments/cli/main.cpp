@@ -299,6 +299,9 @@ int main(int argc, char** argv) {
                    "Out-of-plane lean [m] at the bottom row from which a cloth whose planar hang is unstable "
                    "settles (0: keep the planar hang)")
       ->capture_default_str();
+  modes->add_flag("--fd-check", modc.fd_check,
+                  "Also form K by central differences of the full force (frozen contact forces recomputed) and "
+                  "report its asymmetry, its distance from the assembled K and its lowest frequencies");
   modes->add_option("--out", modes_out, "Output folder (default results/modes/<scene name>)");
   modes->add_flag("--quiet", modes_quiet, "No progress on stderr");
 

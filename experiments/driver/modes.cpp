@@ -72,6 +72,16 @@ std::string mode_vtu(Model& model, const Scene& scene, const LinearizedModes& lm
   return to_vtu(f);
 }
 
+Json fd_json(const StiffnessCheck& fd) {
+  Json freqs = Json::array();
+  for (double e : fd.eigenvalues) freqs.push(frequency_hz(e));
+  return Json::object()
+      .set("asymmetry", fd.asymmetry)
+      .set("relative_difference_from_assembled", fd.difference)
+      .set("relative_norm_outside_pattern", fd.outside_pattern)
+      .set("frequencies_hz", std::move(freqs));
+}
+
 Json model_json(const LinearizedModes& lm, int dofs) {
   Json freqs = Json::array();
   for (double e : lm.modes.eigenvalues) freqs.push(frequency_hz(e));
@@ -84,6 +94,7 @@ Json model_json(const LinearizedModes& lm, int dofs) {
       .set("equilibrium_newton_iterations", lm.equilibrium.iterations)
       .set("equilibrium_residual_N", lm.equilibrium.residual)
       .set("stiffness_asymmetry", lm.asymmetry)
+      .set("finite_difference_stiffness", lm.fd.eigenvalues.empty() ? Json() : fd_json(lm.fd))
       .set("operator_solves", static_cast<double>(lm.modes.operator_products))
       .set("frequencies_hz", std::move(freqs));
 }
@@ -133,9 +144,44 @@ std::string settle_text() {
   return text;
 }
 
+// K by central differences of the full force, whose frozen inputs (contact
+// normal forces F_n, friction's F_u) are recomputed at every state (docs/models.md
+// §5.4, §10.2), kept on the model's sparsity pattern; `outside` gets the
+// Frobenius norm of what falls outside it.
+SparseMatrix finite_difference_stiffness(Model& model, const Vec& q, double& outside) {
+  const int n = model.num_dofs();
+  Evaluation e;
+  allocate_evaluation(model, e);
+  const Vec zero = Vec::Zero(n);
+  SparseMatrix k = model.pattern();
+  k.coeffRef(0, 0);  // keeps the pattern's structure; values set below
+  for (int i = 0; i < k.nonZeros(); ++i) k.valuePtr()[i] = 0.0;
+  outside = 0.0;
+  Vec plus, qh = q;
+  for (int j = 0; j < n; ++j) {
+    const double h = 1e-6 * std::max(1e-3, std::abs(q[j]));  // positions ~1e-2 m, sliding coordinates ~1e-2 m
+    qh[j] = q[j] + h;
+    model.evaluate(0.0, qh, zero, kForce, e);
+    plus = e.force;
+    qh[j] = q[j] - h;
+    model.evaluate(0.0, qh, zero, kForce, e);
+    qh[j] = q[j];
+    Vec column = -(plus - e.force) / (2 * h);  // K = −∂f/∂q
+    for (SparseMatrix::InnerIterator it(k, j); it; ++it) {
+      it.valueRef() = column[it.row()];
+      column[it.row()] = 0.0;
+    }
+    outside += column.squaredNorm();
+  }
+  outside = std::sqrt(outside);
+  model.evaluate(0.0, q, zero, kForce, e);  // the auxiliaries of q again
+  return k;
+}
+
 // K = −∂f/∂q and M at (q*, v = 0) (docs/models.md §10.1), the modes of K's
 // symmetric part, and their position components at the crossings.
-void linearize(Model& model, const std::vector<NodeRef>& crossings, const ModalOptions& options, LinearizedModes& lm) {
+void linearize(Model& model, const std::vector<NodeRef>& crossings, const ModalOptions& options, bool fd_check,
+               LinearizedModes& lm) {
   Evaluation e;
   allocate_evaluation(model, e);
   model.evaluate(0.0, lm.q, Vec::Zero(model.num_dofs()), kForce | kDfdq | kMass, e);
@@ -144,6 +190,17 @@ void linearize(Model& model, const std::vector<NodeRef>& crossings, const ModalO
   const SparseMatrix k_sym = 0.5 * (k + SparseMatrix(k.transpose()));
   lm.modes = lowest_modes(k_sym, e.mass, model.fixed_dofs(), options);
   if (!lm.modes.ok) return;
+  if (fd_check) {
+    double outside = 0;
+    const SparseMatrix k_fd = finite_difference_stiffness(model, lm.q, outside);
+    const double norm = k_fd.norm();
+    lm.fd.asymmetry = relative_asymmetry(k_fd);
+    lm.fd.difference = SparseMatrix(k_fd - k).norm() / norm;
+    lm.fd.outside_pattern = outside / norm;
+    const ModalResult fd_modes =
+        lowest_modes(0.5 * (k_fd + SparseMatrix(k_fd.transpose())), e.mass, model.fixed_dofs(), options);
+    if (fd_modes.ok) lm.fd.eigenvalues = fd_modes.eigenvalues;
+  }
   const int count = static_cast<int>(lm.modes.eigenvalues.size());
   lm.crossing_shapes.resize(3 * static_cast<Eigen::Index>(crossings.size()), count);
   for (size_t c = 0; c < crossings.size(); ++c) {
@@ -155,7 +212,7 @@ void linearize(Model& model, const std::vector<NodeRef>& crossings, const ModalO
 }  // namespace
 
 LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& crossings, const ModalOptions& options,
-                                 double lean_m) {
+                                 double lean_m, bool fd_check) {
   LinearizedModes lm;
   lm.model = model.name();
   lm.q = model.initial_q();
@@ -174,7 +231,7 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
     lm.route = settle_text() + " from rest, then Newton (Newton from rest: " + first + ")";
     if (!lm.equilibrium.converged) return lm;
   }
-  linearize(model, crossings, options, lm);
+  linearize(model, crossings, options, fd_check, lm);
   if (!lm.modes.ok || lm.modes.eigenvalues.front() >= 0 || lean_m <= 0) return lm;
 
   // The hang in the cloth's plane is unstable (ω² < 0: it buckles out of
@@ -198,7 +255,7 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
                 "; the planar hang is unstable (lowest %.4g Hz): leaned %g m out of plane at the bottom row, ",
                 lm.unstable_planar_hz, lean_m);
   lm.route += lean + settle_text() + ", then Newton";
-  if (lm.equilibrium.converged) linearize(model, crossings, options, lm);
+  if (lm.equilibrium.converged) linearize(model, crossings, options, fd_check, lm);
   return lm;
 }
 
@@ -225,10 +282,16 @@ ModesResult run_modes(const ModesConfig& c) {
     if (c.progress)
       std::fprintf(stderr, "modes: %s model (%d DoFs): equilibrium, K, %d modes\n", model->name().c_str(),
                    model->num_dofs(), c.count);
-    *out = linearized_modes(*model, crossings, options, c.lean_m);
+    *out = linearized_modes(*model, crossings, options, c.lean_m, c.fd_check);
     if (!out->equilibrium.converged)
       throw std::runtime_error("no " + model->name() + " equilibrium: " + out->equilibrium.message);
     if (!out->modes.ok) throw std::runtime_error(model->name() + " modes: " + out->modes.message);
+    if (c.progress && !out->fd.eigenvalues.empty())
+      std::fprintf(stderr,
+                   "modes: %s: K by central differences of the full force: asymmetry %.3g, %.3g from the assembled "
+                   "K (%.3g outside its pattern); lowest %.4g Hz (assembled %.4g Hz)\n",
+                   model->name().c_str(), out->fd.asymmetry, out->fd.difference, out->fd.outside_pattern,
+                   frequency_hz(out->fd.eigenvalues.front()), frequency_hz(out->modes.eigenvalues.front()));
     if (c.progress)
       std::fprintf(stderr, "modes: %s: equilibrium by %s: %d Newton iterations, residual %.3g N; asymmetry %.3g\n",
                    model->name().c_str(), out->route.c_str(), out->equilibrium.iterations, out->equilibrium.residual,

@@ -41,6 +41,15 @@
 
 namespace wl {
 
+// K by central differences of the full force (its frozen inputs recomputed at
+// every state) against the assembled K, when asked for.
+struct StiffnessCheck {
+  double asymmetry = NAN;           // ‖K_fd − K_fdᵀ‖_F / ‖K_fd‖_F
+  double difference = NAN;          // ‖K_fd − K‖_F / ‖K_fd‖_F on the pattern
+  double outside_pattern = NAN;     // ‖K_fd off the pattern‖_F / ‖K_fd‖_F
+  std::vector<double> eigenvalues;  // lowest ω² of (K_fd + K_fdᵀ)/2 with the same M [1/s²]
+};
+
 // One model linearized about its hanging equilibrium.
 struct LinearizedModes {
   std::string model;
@@ -50,6 +59,7 @@ struct LinearizedModes {
   Vec q;                            // the equilibrium q*
   double asymmetry = 0.0;           // ‖K − Kᵀ‖_F / ‖K‖_F of K = −∂f/∂q at q*
   ModalResult modes;                // of (K + Kᵀ)/2 and M(q*), shapes M-normalized
+  StiffnessCheck fd;                // filled when asked for (fd_check)
   // Rows 3c … 3c+2: the position components at compared crossing c; a column per mode.
   Eigen::MatrixXd crossing_shapes;
 };
@@ -66,8 +76,9 @@ int crossing_position_dof(const Model& model, const NodeRef& node);
 // When the hang in the cloth's plane is unstable (lowest ω² < 0) and lean_m > 0,
 // the cloth is leaned out of plane by lean_m at its bottom row (in proportion
 // to the row), settled by backward Euler and solved again by Newton.
+// With fd_check, also K by central differences of the full force (StiffnessCheck).
 LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& crossings, const ModalOptions& options,
-                                 double lean_m = 0.0);
+                                 double lean_m = 0.0, bool fd_check = false);
 
 struct ModesConfig {
   std::filesystem::path scene_path;
@@ -75,6 +86,7 @@ struct ModesConfig {
   std::optional<std::filesystem::path> fem_params;  // the continuum's parameters (default: the scene's)
   int count = 12;                                   // modes per model
   double lean_m = 1e-3;                             // out-of-plane lean when the planar hang is unstable
+  bool fd_check = false;                            // also K by central differences (StiffnessCheck)
   std::filesystem::path out_dir;
   bool progress = true;
 };
