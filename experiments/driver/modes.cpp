@@ -20,7 +20,7 @@ namespace wl {
 namespace {
 
 // Settling when Newton's method from rest fails (linearized_modes) [s].
-constexpr double kSettleStep = 1e-2, kSettleTime = 2.0;
+constexpr double kSettleSteps[] = {1e-2, 2e-3}, kSettleTime = 2.0;
 
 // ‖A − Aᵀ‖_F / ‖A‖_F.
 double relative_asymmetry(const SparseMatrix& a) {
@@ -126,22 +126,29 @@ int crossing_position_dof(const Model& model, const NodeRef& node) {
 namespace {
 
 // Backward Euler (be-linear, one solve with M − h²K per step) from (q, v = 0):
-// its numerical damping takes the released cloth to rest. Empty when the run fails.
-std::optional<Vec> settle(Model& model, const Vec& q, std::string& why) {
-  auto be = make_integrator("be-linear");
-  IntegratorOptions io;
-  io.dt = kSettleStep;
-  be->initialize(model, 0.0, q, Vec::Zero(model.num_dofs()), io);
-  const StepResult sr = be->advance_to(kSettleTime);
-  if (sr.outcome == Outcome::ok) return be->q();
-  why = std::string("settling by backward Euler ended '") + to_string(sr.outcome) + "': " + sr.message;
+// its numerical damping takes the released cloth to rest. A run that fails
+// (e.g. sliding coordinates that cross after a long step) is repeated at the
+// next shorter step; `how` names the run that settled, or why none did.
+std::optional<Vec> settle(Model& model, const Vec& q, std::string& how) {
+  how.clear();
+  for (double h : kSettleSteps) {
+    auto be = make_integrator("be-linear");
+    IntegratorOptions io;
+    io.dt = h;
+    be->initialize(model, 0.0, q, Vec::Zero(model.num_dofs()), io);
+    const StepResult sr = be->advance_to(kSettleTime);
+    char text[160];
+    if (sr.outcome == Outcome::ok) {
+      std::snprintf(text, sizeof text, "backward Euler (be-linear) at h = %g s for %g s", h, kSettleTime);
+      how += text;
+      return be->q();
+    }
+    std::snprintf(text, sizeof text, "backward Euler at h = %g s ended '%s' at t = %g s (", h, to_string(sr.outcome),
+                  be->t());
+    how += text + sr.message + "); ";
+  }
+  how = "settling failed: " + how;
   return std::nullopt;
-}
-
-std::string settle_text() {
-  char text[96];
-  std::snprintf(text, sizeof text, "backward Euler (be-linear) at h = %g s for %g s", kSettleStep, kSettleTime);
-  return text;
 }
 
 // K by central differences of the full force, whose frozen inputs (contact
@@ -224,11 +231,15 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
   lm.route = "Newton from the rest state";
   if (!lm.equilibrium.converged) {
     const std::string first = lm.equilibrium.message;
-    const std::optional<Vec> settled = settle(model, model.initial_q(), lm.equilibrium.message);
-    if (!settled) return lm;
+    std::string how;
+    const std::optional<Vec> settled = settle(model, model.initial_q(), how);
+    if (!settled) {
+      lm.equilibrium.message = "Newton from rest: " + first + "; " + how;
+      return lm;
+    }
     lm.q = *settled;
     lm.equilibrium = equilibrium.solve(lm.q, eo);
-    lm.route = settle_text() + " from rest, then Newton (Newton from rest: " + first + ")";
+    lm.route = how + " from rest, then Newton (Newton from rest: " + first + ")";
     if (!lm.equilibrium.converged) return lm;
   }
   linearize(model, crossings, options, fd_check, lm);
@@ -243,9 +254,11 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
   Vec leaning = lm.q;
   for (const NodeRef& n : crossings)
     leaning[crossing_position_dof(model, n) + 1] += lean_m * n.j / std::max(last_row, 1);
-  const std::optional<Vec> settled = settle(model, leaning, lm.equilibrium.message);
+  std::string how;
+  const std::optional<Vec> settled = settle(model, leaning, how);
   if (!settled) {
     lm.equilibrium.converged = false;
+    lm.equilibrium.message = "the planar hang is unstable and the leaning cloth did not settle: " + how;
     return lm;
   }
   lm.q = *settled;
@@ -254,7 +267,7 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
   std::snprintf(lean, sizeof lean,
                 "; the planar hang is unstable (lowest %.4g Hz): leaned %g m out of plane at the bottom row, ",
                 lm.unstable_planar_hz, lean_m);
-  lm.route += lean + settle_text() + ", then Newton";
+  lm.route += lean + how + ", then Newton";
   if (lm.equilibrium.converged) linearize(model, crossings, options, fd_check, lm);
   return lm;
 }
