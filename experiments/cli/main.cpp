@@ -1,6 +1,7 @@
 // weavelab command line: `weavelab run SCENE`, `weavelab info SCENE`,
 // `weavelab work-precision SCENE`, `weavelab stability SCENE`,
-// `weavelab calibrate SCENE`, `weavelab fidelity SCENE`, `weavelab fit SCENE --target RUN_DIR`.
+// `weavelab calibrate SCENE`, `weavelab fidelity SCENE`, `weavelab fit SCENE --target RUN_DIR`,
+// `weavelab diagnose SCENE`, `weavelab modes SCENE`.
 // Exit codes: 0 success, 1 numerical failure (outcome in the summary),
 // 2 bad scene, input file or arguments, or an output folder in use,
 // 3 output could not be written, 130 / 143 interrupted by SIGINT / SIGTERM.
