@@ -6,7 +6,8 @@ and writes DIR/diagnosis.png and .svg: the distance between the yarn crossings
 and the continuum over time (all crossings, border, interior) with both runs'
 time errors as horizontal lines, the distance by row of crossings (0 = the held
 top row), and per energy quantity (kinetic, stretch, shear, bending, the work of
-the wind and of the dissipative terms) its change since t = 0 for both models.
+the wind and of the dissipative terms) its change since t = 0 for both models;
+stretch and bending also split into warp and weft (DIR/energy_directions.csv).
 
 Usage: plot_diagnosis.py DIR [--out PREFIX]
 """
@@ -62,6 +63,18 @@ def energy_series(rows):
     return out
 
 
+def direction_series(folder):
+    """{(model, "stretch" | "bending", "warp" | "weft"): (times, changes since t = 0)}, or {} without the file."""
+    if not os.path.exists(os.path.join(folder, "energy_directions.csv")):
+        return {}
+    per = {}
+    for r in read_csv(folder, "energy_directions.csv"):
+        kind = "bending" if r["term"].endswith("bending") else "stretch"
+        for direction in ("warp", "weft"):
+            per.setdefault((r["model"], kind, direction), []).append((float(r["time_s"]), float(r[f"{direction}_J"])))
+    return {k: ([t for t, _ in v], [e - v[0][1] for _, e in v]) for k, v in per.items()}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("folder")
@@ -70,6 +83,7 @@ def main():
     distance = read_csv(a.folder, "distance.csv")
     rows = read_csv(a.folder, "rows.csv")
     energies = energy_series(read_csv(a.folder, "energies.csv"))
+    directions = direction_series(a.folder)
     meta_path = os.path.join(a.folder, "diagnosis.json")
     if not os.path.exists(meta_path):
         fail(f"'{meta_path}' is missing (run `weavelab diagnose` first)")
@@ -104,6 +118,11 @@ def main():
             if (model, label) in energies:
                 times, values = energies[(model, label)]
                 ax.plot(times, [1e6 * v for v in values], style, label=model)
+            for direction, marker in (("warp", "^"), ("weft", "v")):
+                if (model, label, direction) in directions:
+                    times, values = directions[(model, label, direction)]
+                    ax.plot(times, [1e6 * v for v in values], style, marker=marker, markevery=max(1, len(times) // 8),
+                            markersize=4, linewidth=0.8, label=f"{model} {direction}")
         ax.set_title(label, fontsize=9)
         ax.set_xlabel("t [s]", fontsize=8)
         ax.set_ylabel("change since t = 0 [µJ]", fontsize=8)

@@ -1,6 +1,7 @@
 // weavelab command line: `weavelab run SCENE`, `weavelab info SCENE`,
 // `weavelab work-precision SCENE`, `weavelab stability SCENE`,
-// `weavelab calibrate SCENE`, `weavelab fidelity SCENE`, `weavelab fit SCENE --target RUN_DIR`.
+// `weavelab calibrate SCENE`, `weavelab fidelity SCENE`, `weavelab fit SCENE --target RUN_DIR`,
+// `weavelab diagnose SCENE`, `weavelab modes SCENE`.
 // Exit codes: 0 success, 1 numerical failure (outcome in the summary),
 // 2 bad scene, input file or arguments, or an output folder in use,
 // 3 output could not be written, 130 / 143 interrupted by SIGINT / SIGTERM.
@@ -16,6 +17,7 @@
 #include "experiments/driver/fidelity.h"
 #include "experiments/driver/fit_command.h"
 #include "experiments/driver/interrupt.h"
+#include "experiments/driver/modes.h"
 #include "experiments/driver/run.h"
 #include "experiments/driver/run_settings.h"
 #include "experiments/driver/stability.h"
@@ -282,6 +284,28 @@ int main(int argc, char** argv) {
   diagnose->add_option("--out", diag_out, "Output folder (default results/diagnose/<scene name>)");
   diagnose->add_flag("--quiet", diag_quiet, "No progress on stderr");
 
+  wl::ModesConfig modc;
+  std::string modes_scene, modes_params, modes_out;
+  bool modes_quiet = false;
+  auto* modes = app.add_subcommand(
+      "modes",
+      "Lowest vibration modes of the yarn level and the continuum about the same hanging equilibrium (wind "
+      "off), matched by shape (MAC): frequencies, MAC matrix, mode shapes (VTU)");
+  modes->add_option("scene", modes_scene, "Scene file (TOML)")->required();
+  modes->add_option("--fem-params", modes_params,
+                    "Continuum parameter file (default: the scene's, or the first guess)");
+  modes->add_option("--count", modc.count, "Modes per model")->capture_default_str();
+  modes
+      ->add_option("--lean", modc.lean_m,
+                   "Out-of-plane lean [m] at the bottom row from which a cloth whose planar hang is unstable "
+                   "settles (0: keep the planar hang)")
+      ->capture_default_str();
+  modes->add_flag("--fd-check", modc.fd_check,
+                  "Also form K by central differences of the full force (frozen contact forces recomputed) and "
+                  "report its asymmetry, its distance from the assembled K and its lowest frequencies");
+  modes->add_option("--out", modes_out, "Output folder (default results/modes/<scene name>)");
+  modes->add_flag("--quiet", modes_quiet, "No progress on stderr");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -431,6 +455,32 @@ int main(int argc, char** argv) {
         throw;
       } catch (const std::runtime_error& e) {
         std::cerr << "weavelab: diagnose: " << e.what() << "\n";
+        return 1;
+      }
+    }
+    if (*modes) {
+      modc.scene_path = modes_scene;
+      modc.scene = wl::load_scene(modes_scene);
+      if (!modes_params.empty()) modc.fem_params = modes_params;
+      modc.out_dir =
+          wl::output_folder(modes->count("--out") ? std::optional(modes_out) : std::nullopt,
+                            std::filesystem::path("results/modes") / std::filesystem::path(modes_scene).stem());
+      modc.progress = !modes_quiet;
+      try {
+        const wl::ModesResult r = wl::run_modes(modc);
+        double lowest_mac = 1.0;
+        for (const wl::ModePair& p : r.pairs) lowest_mac = std::min(lowest_mac, p.mac);
+        std::fprintf(stderr,
+                     "weavelab: modes: equilibria %.3g mm apart (RMS over the crossings); lowest %.4g Hz (yarn), "
+                     "%.4g Hz (continuum); %zu pairs, lowest MAC %.3g; results in %s\n",
+                     1e3 * r.equilibrium_rms_m, wl::frequency_hz(r.yarn.modes.eigenvalues.front()),
+                     wl::frequency_hz(r.fem.modes.eigenvalues.front()), r.pairs.size(), lowest_mac,
+                     modc.out_dir.string().c_str());
+        return 0;
+      } catch (const std::filesystem::filesystem_error&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        std::cerr << "weavelab: modes: " << e.what() << "\n";
         return 1;
       }
     }

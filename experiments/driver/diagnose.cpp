@@ -6,6 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "experiments/driver/energy_split.h"
 #include "experiments/driver/experiment_meta.h"
 #include "experiments/driver/recorded_run.h"
 #include "experiments/driver/time_error.h"
@@ -25,9 +26,12 @@ namespace {
 // energy, each conservative term's potential and each other term's work so far.
 class EnergyLedger {
  public:
-  explicit EnergyLedger(std::string model) : model_(std::move(model)) {}
+  EnergyLedger(std::string model, const Scene& scene) : model_(std::move(model)), scene_(scene) {}
   // After every accepted step (and once at t = 0): W_k += ½(P_k(t₀) + P_k(t₁))(t₁ − t₀).
   void step(Model& model, double t, const Vec& q, const Vec& v) {
+    if (!split_) split_ = std::make_unique<EnergySplit>(model, scene_);
+    model_at_ = &model;
+    q_ = q;
     auto& terms = dynamic_cast<TermModel&>(model);
     std::vector<TermModel::TermReading> now = terms.term_readings(t, q, v);
     if (!last_.empty())
@@ -50,9 +54,20 @@ class EnergyLedger {
       else row("work of " + last_[k].name, work_[k]);
     }
   }
+  // Rows (time, model, term, warp part, weft part) at the state of the last step.
+  void direction_rows(CsvTable& csv) const {
+    const std::vector<EnergyPart> parts = split_->parts(*model_at_, q_);
+    for (size_t k = 0; k + 1 < parts.size(); k += 2)
+      csv.row(
+          {csv_number(t_), model_, parts[k].term, csv_number(parts[k].energy_J), csv_number(parts[k + 1].energy_J)});
+  }
 
  private:
   std::string model_;
+  const Scene& scene_;
+  std::unique_ptr<EnergySplit> split_;  // built at the first step, for the run's model
+  const Model* model_at_ = nullptr;     // the model and state of the last step
+  Vec q_;
   std::vector<TermModel::TermReading> last_;
   std::vector<double> work_;
   double kinetic_ = 0, t_ = 0;
@@ -70,12 +85,13 @@ struct ModelRun {
 };
 
 ModelRun run_with_ledger(const Scene& s, const std::string& model, EnergyLedger& ledger, CsvTable& energies,
-                         bool progress) {
+                         CsvTable& directions, bool progress) {
   ModelRun out;
   {  // the initial state
     std::unique_ptr<Model> m = make_model(s, model);
     ledger.step(*m, 0.0, m->initial_q(), m->initial_v());
     ledger.frame_rows(energies);
+    ledger.direction_rows(directions);
   }
   RecordOptions rec;
   rec.progress = progress;
@@ -84,6 +100,7 @@ ModelRun run_with_ledger(const Scene& s, const std::string& model, EnergyLedger&
   rec.on_step = [&](Model& m, double t, const Vec& q, const Vec& v) { ledger.step(m, t, q, v); };
   rec.on_frame = [&](const Frame& f) {
     ledger.frame_rows(energies);
+    ledger.direction_rows(directions);
     out.frames.push_back(f);
   };
   if (progress) std::fprintf(stderr, "diagnose: %s model, %s\n", model.c_str(), s.integrator.c_str());
@@ -114,9 +131,10 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
 
   std::filesystem::create_directories(c.out_dir);
   CsvTable energies(c.out_dir / "energies.csv", {"time_s", "model", "quantity", "value_J"});
-  EnergyLedger yarn_ledger("yarn"), fem_ledger("fem");
-  const ModelRun yarn = run_with_ledger(yarn_scene, "yarn", yarn_ledger, energies, c.progress);
-  const ModelRun fem = run_with_ledger(fem_scene, "fem", fem_ledger, energies, c.progress);
+  EnergyLedger yarn_ledger("yarn", yarn_scene), fem_ledger("fem", fem_scene);
+  CsvTable directions(c.out_dir / "energy_directions.csv", {"time_s", "model", "term", "warp_J", "weft_J"});
+  const ModelRun yarn = run_with_ledger(yarn_scene, "yarn", yarn_ledger, energies, directions, c.progress);
+  const ModelRun fem = run_with_ledger(fem_scene, "fem", fem_ledger, energies, directions, c.progress);
 
   // Per crossing: its grid position (from the rest material coordinates) and distance per frame.
   const Frame& first = yarn.frames.front();
@@ -212,6 +230,7 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
   j.set("created", utc_now());
   add_provenance(j);
   energies.commit();
+  directions.commit();
   distance.commit();
   by_row.commit();
   write_file_atomically(c.out_dir / "diagnosis.json", j.dump());

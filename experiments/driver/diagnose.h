@@ -7,6 +7,9 @@
 //                   gravity, handles, …) and the work done so far by every
 //                   other force (wind, friction, damping), integrated over the
 //                   steps by the trapezoidal rule [J]
+//   energy_directions.csv   per model, frame and term (stretch, bending): the
+//                   part of its energy along the warp and along the weft, which
+//                   sum to the term's energy in energies.csv (energy_split.h) [J]
 //   distance.csv    per frame: RMS and max over the crossings of the distance
 //                   between each yarn crossing and the continuum surface at
 //                   its material point, and the RMS over the border crossings

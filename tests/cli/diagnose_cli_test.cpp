@@ -29,7 +29,8 @@ TEST_F(DiagnoseCli, WritesTheFilesAndTheChart) {
   const Result r = diagnose("");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("weavelab: diagnose: distance "), std::string::npos) << r.output;
-  for (const char* f : {"energies.csv", "distance.csv", "rows.csv", "distance.pvd", "diagnosis.json"})
+  for (const char* f :
+       {"energies.csv", "energy_directions.csv", "distance.csv", "rows.csv", "distance.pvd", "diagnosis.json"})
     EXPECT_TRUE(fs::exists(out() / f)) << f;
   const Result plot = wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
                                             "/experiments/plot_diagnosis.py' '" + out().string() + "'");

@@ -1,0 +1,41 @@
+// The stretch and bending energies of a yarn-level or continuum model split
+// into the part carried along the warp and the part along the weft
+// (docs/design.md §7.6), for `weavelab diagnose`:
+//   yarn level  each stretch segment and bending triple lies on one yarn: a
+//               warp (its nodes share j) or a weft (they share i);
+//   continuum   the triangle stretch energy and the hinge bending energy are
+//               linear in (k_warp, k_weft) (docs/models.md §6.3, §6.5), so the
+//               warp part is the energy of the same model with the weft
+//               stiffness set to 0, and the other way round.
+// The two parts sum to the term's energy. The continuum's border bars
+// (fem-border-stretch) are not split.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "models/core/model.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+struct EnergyPart {
+  std::string term;  // "stretch", "bending", "fem-stretch", "fem-bending"
+  bool warp = true;  // the warp part (else the weft part)
+  double energy_J = 0.0;
+};
+
+class EnergySplit {
+ public:
+  // For a YarnModel or a FemModel (built from `scene`); another model has nothing to split.
+  EnergySplit(const Model& model, const Scene& scene);
+  ~EnergySplit();
+  // Warp then weft part of every split term of `model` (the model given to
+  // the constructor, or one built the same way) at q, stretch before bending.
+  std::vector<EnergyPart> parts(const Model& model, const Vec& q) const;
+
+ private:
+  std::unique_ptr<Model> warp_only_, weft_only_;  // continuum: the other direction's stiffness 0
+};
+
+}  // namespace wl
