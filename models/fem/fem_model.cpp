@@ -99,7 +99,8 @@ void FemModel::build() {
     terms_.push_back(std::move(t));
   }
   if (on.bending && !hinges_.empty()) {
-    auto t = std::make_unique<HingeBendingTerm>(material_.warp_bending_N_m, material_.weft_bending_N_m);
+    auto t = std::make_unique<HingeBendingTerm>(material_.warp_bending_N_m, material_.weft_bending_N_m,
+                                                material_.diagonal_bending_N_m);
     for (const Hinge& h : hinges_) {
       std::array<int, 12> s;
       for (int k = 0; k < 4; ++k)
@@ -268,6 +269,7 @@ std::map<std::string, std::string> FemModel::describe() const {
       " shear_lock_angle_rad=" + format(p.shear_lock_angle_rad) +
       " shear_lock_exponent=" + format(p.shear_lock_exponent) + " warp_bending_N_m=" + format(p.warp_bending_N_m) +
       " weft_bending_N_m=" + format(p.weft_bending_N_m);
+  if (p.diagonal_bending_N_m > 0) m["fem_parameters"] += " diagonal_bending_N_m=" + format(p.diagonal_bending_N_m);
   return m;
 }
 

@@ -48,7 +48,8 @@
 //     mesh_file, parameter_file   paths relative to the scene file's directory,
 //       resolved on load; the file must exist
 //     areal_density_kg_per_m2, warp_stretch_N_per_m, weft_stretch_N_per_m, shear_N_per_m,
-//     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m
+//     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m,
+//     diagonal_bending_N_m
 //       optional numbers > 0 (absent = computed / taken from parameter_file)
 //
 // ERRORS: SceneError with file, line (source line of the offending value; for a
@@ -268,6 +269,7 @@ void read_fem(TableReader& top, Scene& s) {
   f->read_number("shear_lock_exponent", fem.shear_lock_exponent, "a number > 0", positive);
   f->read_number("warp_bending_N_m", fem.warp_bending_N_m, "a number > 0 (N·m)", positive);
   f->read_number("weft_bending_N_m", fem.weft_bending_N_m, "a number > 0 (N·m)", positive);
+  f->read_number("diagonal_bending_N_m", fem.diagonal_bending_N_m, "a number > 0 (N·m)", positive);
   f->finish();
 }
 

@@ -55,6 +55,7 @@ struct FemSettings {
   std::optional<double> shear_lock_angle_rad;  // shear angle where stiffening starts
   std::optional<double> shear_lock_exponent;
   std::optional<double> warp_bending_N_m, weft_bending_N_m;  // per unit width
+  std::optional<double> diagonal_bending_N_m;                // 45° hinges; absent: the mean of warp and weft
   bool border_strip = false;  // bars for the border yarns' outer half spacing (terms/border_stretch.h)
 };
 
