@@ -200,6 +200,8 @@ int main(int argc, char** argv) {
                       "Leave the yarn sliding coordinates free in the tests (default frozen)");
   calibrate->add_flag("--border-strip", cal.border_strip,
                       "Continuum with bars for the border yarns' outer half spacing ([fem] border_strip)");
+  calibrate->add_flag("--grid-line-bending", cal.grid_line_bending,
+                      "Continuum whose grid lines bend like yarns instead of hinges ([fem] grid_line_bending)");
   calibrate->add_flag("--diagonal-bending", cal.diagonal_bending,
                       "Fit the 45° hinges' own bending stiffness ([fem] diagonal_bending_N_m, informed by the "
                       "bending-diagonal and bending-antidiagonal tests)");

@@ -123,6 +123,7 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   const int patch = c.patch > 0 ? c.patch : std::max(std::min(size, 33), minimum_patch(p.scene));
   p.test_scene = material_test_scene(p.scene, patch, c.sliding);  // too small: invalid_argument
   p.test_scene.fem.border_strip = c.border_strip;
+  p.test_scene.fem.grid_line_bending = c.grid_line_bending;
   std::vector<std::string> names = c.tests.empty() ? default_test_names() : c.tests;
   for (const std::string& name : names) {
     TestSpec t = test_spec(name);  // unknown: invalid_argument
@@ -281,7 +282,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     Json vars = Json::array();
     for (const auto& [name, m] : variants) {
       if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
-      const Scene variant_scene = with_material(vs, m, c.border_strip && name != "first_guess");
+      Scene variant_scene = with_material(vs, m, c.border_strip && name != "first_guess");
+      variant_scene.fem.grid_line_bending = c.grid_line_bending && name != "first_guess";
       const VariantRun vr = run_continuum_variant(name, variant_scene, yarn, iopt, c.progress);
       const TimeErrorEstimate fem_error = estimate_time_error(variant_scene, "fem", vs.integrator, iopt, vr.run);
       for (size_t k = 0; k < vr.times.size(); ++k)
@@ -325,6 +327,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
        {"git_revision", git_revision()},
        {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
        {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene" : "false"},
+       {"grid_line_bending",
+        c.grid_line_bending ? "fitted with [fem] grid_line_bending = true: set it in the scene" : "false"},
        {"residual_rms_relative", rms.str()},
        {"areal_density", "total yarn mass of the scene over the crossing grid's area"},
        {"created", utc_now()}});
@@ -336,6 +340,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   j.set("patch", patch);
   j.set("sliding", c.sliding);
   j.set("border_strip", c.border_strip);
+  j.set("grid_line_bending", c.grid_line_bending);
   Json params = Json::array();
   for (const FittedParameter& fp : out.fit.parameters) {
     Json e = Json::object();

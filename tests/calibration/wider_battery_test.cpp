@@ -15,6 +15,13 @@ namespace {
 
 Scene hanging_wind() { return load_scene(WEAVELAB_SOURCE_DIR "/experiments/scenes/hanging_wind.toml"); }
 
+// R of a test at one load.
+double response(const Scene& patch, const FemMaterial& m, TestKind kind, double load) {
+  const ResponseCurve c = run_fem_test(patch, m, {kind, {load}});
+  EXPECT_TRUE(c.complete) << c.message;
+  return c.complete ? c.points[0].response : NAN;
+}
+
 TEST(WiderBattery, NamesParseWithAndWithoutRotation) {
   for (const std::string& name : test_names()) {
     EXPECT_EQ(test_name(test_spec(name)), name);
@@ -67,11 +74,25 @@ TEST(WiderBattery, FemDiagonalBendingIsTheSumOverItsHinges) {
   }
 }
 
-// R of a test at one load.
-double response(const Scene& patch, const FemMaterial& m, TestKind kind, double load) {
-  const ResponseCurve c = run_fem_test(patch, m, {kind, {load}});
-  EXPECT_TRUE(c.complete) << c.message;
-  return c.complete ? c.points[0].response : NAN;
+TEST(WiderBattery, FemGridLinesBendAlongTheDiagonalsLikeAPlateWithoutTwist) {
+  // With [fem] grid_line_bending the lines along u and v bend like yarns: a cylinder of curvature κ
+  // about v turns each warp line by κL at its N−2 interior vertices, so R = k_warp κ(N−2)/(N−1) as
+  // with the hinges; one along either diagonal turns each line by its normal curvature κ/2 only,
+  // V = k w (κL/2)²/(2L) per vertex over lines of total width (N−1)L, so
+  //   R_diagonal = R_antidiagonal = ¼κ(k_warp + k_weft)(N−2)/(N−1),
+  // a plate without twist stiffness (up to the chords' membrane work, 1e-4 here).
+  const int n = 9;
+  Scene patch = material_test_scene(hanging_wind(), n);
+  patch.fem.grid_line_bending = true;
+  FemMaterial m = default_fem_material(patch);
+  m.warp_bending_N_m *= 1.4;
+  const double kappa = 1.0, f = (n - 2.0) / (n - 1.0);
+  const double kw = m.warp_bending_N_m, kf = m.weft_bending_N_m;
+  EXPECT_NEAR(response(patch, m, TestKind::bending_warp, kappa), kw * kappa * f, 1e-4 * kw * kappa);
+  EXPECT_NEAR(response(patch, m, TestKind::bending_weft, kappa), kf * kappa * f, 1e-4 * kf * kappa);
+  for (TestKind kind : {TestKind::bending_diagonal, TestKind::bending_antidiagonal})
+    EXPECT_NEAR(response(patch, m, kind, kappa), 0.25 * kappa * (kw + kf) * f, 1e-4 * kappa * (kw + kf))
+        << test_name(kind);
 }
 
 TEST(WiderBattery, FemCombinedLoadsAreTheSumOfTheirPartsAtSmallLoad) {
@@ -85,8 +106,8 @@ TEST(WiderBattery, FemCombinedLoadsAreTheSumOfTheirPartsAtSmallLoad) {
   const double lambda = 1e-5;
   const double c_bend = 50.0 / ((n - 1) * patch.spacing_m);
   const double ss = response(patch, m, TestKind::stretch_shear, lambda);
-  const double ss_parts = response(patch, m, TestKind::uniaxial_warp, lambda) +
-                          10.0 * response(patch, m, TestKind::shear, 10.0 * lambda);
+  const double ss_parts =
+      response(patch, m, TestKind::uniaxial_warp, lambda) + 10.0 * response(patch, m, TestKind::shear, 10.0 * lambda);
   EXPECT_NEAR(ss, ss_parts, 1e-4 * std::abs(ss_parts));
   const double sb = response(patch, m, TestKind::stretch_bending, lambda);
   const double sb_parts = response(patch, m, TestKind::uniaxial_warp, lambda) +
@@ -166,6 +187,37 @@ TEST(WiderBattery, FitRecoversTheDiagonalBendingStiffness) {
   FemMaterial fitted = r.material;
   for (const FittedParameter& p : r.parameters)
     EXPECT_NEAR(material_value(fitted, p.key) / material_value(truth, p.key), 1.0, 1e-6) << p.key;
+}
+
+TEST(WiderBattery, FitRecoversTheGridLineBendingStiffnesses) {
+  // Synthetic recovery of both stiffnesses of the grid-line law from its own warp, weft and
+  // diagonal curves (its dR/dp are checked in VirtualTests.ContinuumSensitivitiesMatchCentralDifferences).
+  Scene patch = material_test_scene(hanging_wind(), 7);
+  patch.fem.grid_line_bending = true;
+  FemMaterial truth = default_fem_material(patch);
+  truth.warp_bending_N_m *= 0.7;
+  truth.weft_bending_N_m *= 1.5;
+  const std::vector<std::string> keys{"warp_bending_N_m", "weft_bending_N_m"};
+  const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& ks) {
+    return run_fem_test(patch, m, t, ks);
+  };
+  std::vector<FitCurve> curves;
+  for (TestKind kind : {TestKind::bending_warp, TestKind::bending_weft, TestKind::bending_diagonal}) {
+    const std::vector<double> full = default_ladder(kind, 7, patch.spacing_m);
+    FitCurve fc{{kind, {full[1], full.back()}}, {}};
+    for (const ResponsePoint& pt : run_fem_test(patch, truth, fc.test).points) fc.target.push_back(pt.response);
+    curves.push_back(fc);
+  }
+  FemMaterial start = truth;
+  start.warp_bending_N_m *= 3.0;
+  start.weft_bending_N_m /= 3.0;
+  FitOptions opt;
+  opt.starts = 1;
+  const FitResult r = fit_continuum(curves, start, continuum, opt);
+  ASSERT_TRUE(r.converged) << r.message;
+  FemMaterial fitted = r.material;
+  for (const std::string& key : keys)
+    EXPECT_NEAR(material_value(fitted, key) / material_value(truth, key), 1.0, 1e-6) << key;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "models/fem/deformation_gradient.h"
 #include "models/fem/fem_material.h"
 #include "models/fem/terms/border_stretch.h"
+#include "models/fem/terms/grid_line_bending.h"
 #include "models/fem/terms/hinge_bending.h"
 #include "models/fem/terms/in_plane_shear.h"
 #include "models/fem/terms/lumped_mass.h"
@@ -270,6 +271,46 @@ TEST(FemTermParameters, DiagonalBendingDerivativesMatchFiniteDifferences) {
   }
   EXPECT_EQ(HingeBendingTerm(1, 1, 0.5).parameter_keys().back(), kFemDiagonalBending);
   EXPECT_EQ(HingeBendingTerm(1, 1).parameter_keys().size(), 2u);  // off: not a parameter
+}
+
+// Three vertices of a grid line: middle, next, previous; bent by θ with some scatter.
+std::vector<test::LocalState> line_states() {
+  std::vector<test::LocalState> states;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  for (double th : {0.0, 0.04, 0.7, -1.5}) {
+    const double l = 0.004;
+    test::LocalState s{{0, 0, 0, l * std::cos(th), 0, l * std::sin(th), -l, 0, 0}, std::vector<double>(9, 0.0)};
+    if (th != 0.0)
+      for (auto& x : s.q) x += 0.0004 * d(rng);
+    states.push_back(s);
+  }
+  return states;
+}
+
+TEST(GridLineBendingTerm, ForcesJacobianAndParameterDerivativeMatchFiniteDifferences) {
+  const std::array<int, 9> s{0, 1, 2, 3, 4, 5, 6, 7, 8};
+  GridLineBendingTerm t;
+  t.add(s, 2e-7 * 0.004, 0.004);
+  auto r = test::check_element(t, 0, line_states(), {.rel_step = 1e-7, .rtol = 2e-5, .floor = 1e-14});
+  EXPECT_TRUE(r.ok) << r.detail;
+  auto make = [&](double k) {
+    auto term = std::make_unique<GridLineBendingTerm>();
+    term->add(s, k * 0.004, 0.004);  // a line of width 4 mm
+    term->tag_last(kFemWarpBending, k);
+    return std::unique_ptr<Term>(std::move(term));
+  };
+  r = test::check_parameter_derivative(make, 2e-7, 0, 0, line_states(), {1e-7, 1e-5, 1e-14});
+  EXPECT_TRUE(r.ok) << r.detail;
+}
+
+TEST(GridLineBendingTerm, EnergyIsTheYarnLawOfTheTurningAngle) {
+  // V = k θ²/(2l) for a line of stiffness k (N·m²) turning by θ at its middle vertex.
+  const double l = 0.004, k = 3e-9, th = 0.3;
+  GridLineBendingTerm t;
+  t.add({0, 1, 2, 3, 4, 5, 6, 7, 8}, k, l);
+  const double q[9] = {0, 0, 0, l * std::cos(th), l * std::sin(th), 0, -l, 0, 0};
+  EXPECT_NEAR(t.energy(0, q), k * th * th / (2 * l), 1e-12 * k * th * th / l);
 }
 
 TEST(BorderStretchTerm, ForcesAndParameterDerivativesMatchFiniteDifferences) {
