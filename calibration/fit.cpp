@@ -32,6 +32,7 @@ const ParamSpec kParams[] = {
     {"shear_lock_exponent", &FemMaterial::shear_lock_exponent},
     {"warp_bending_N_m", &FemMaterial::warp_bending_N_m},
     {"weft_bending_N_m", &FemMaterial::weft_bending_N_m},
+    {"diagonal_bending_N_m", &FemMaterial::diagonal_bending_N_m},
 };
 
 constexpr double kLockAngleMax = 0.999 * std::numbers::pi / 2;
@@ -55,7 +56,7 @@ class CurveCost final : public ceres::CostFunction {
         evaluations_(evaluations) {
     double range = 0.0;
     for (double r : curve.target) range = std::max(range, std::abs(r));
-    if (!(range > 0)) throw std::invalid_argument(test_name(curve.test.kind) + ": the target curve is zero");
+    if (!(range > 0)) throw std::invalid_argument(test_name(curve.test) + ": the target curve is zero");
     weight_ = 1.0 / (range * std::sqrt(double(curve.target.size())));
     set_num_residuals(static_cast<int>(curve.target.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(free.size()));
@@ -136,6 +137,17 @@ std::vector<std::string> informed_parameters(TestKind kind, const FemMaterial& g
       return {"shear_N_per_m"};
     case TestKind::bending_warp: return {"warp_bending_N_m"};
     case TestKind::bending_weft: return {"weft_bending_N_m"};
+    case TestKind::bending_diagonal:
+    case TestKind::bending_antidiagonal:
+      // on the grid mesh the warp and weft hinges bend too (docs/calibration.md §2.1)
+      if (guess.diagonal_bending_N_m > 0) return {"warp_bending_N_m", "weft_bending_N_m", "diagonal_bending_N_m"};
+      return {"warp_bending_N_m", "weft_bending_N_m"};
+    case TestKind::stretch_shear: {
+      std::vector<std::string> keys = informed_parameters(TestKind::shear, guess);
+      keys.insert(keys.begin(), "warp_stretch_N_per_m");
+      return keys;
+    }
+    case TestKind::stretch_bending: return {"warp_stretch_N_per_m", "warp_bending_N_m"};
   }
   return {};
 }

@@ -41,6 +41,7 @@ auto* fem_field(S& scene, const std::string& key) {
   if (key == kFemShearLockExponent) return &f.shear_lock_exponent;
   if (key == kFemWarpBending) return &f.warp_bending_N_m;
   if (key == kFemWeftBending) return &f.weft_bending_N_m;
+  if (key == kFemDiagonalBending) return &f.diagonal_bending_N_m;
   return decltype(&f.shear_N_per_m){nullptr};
 }
 

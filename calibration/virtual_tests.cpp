@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+
 #include "models/fem/fem_model.h"
 #include "models/yarn/yarn_model.h"
 
@@ -25,7 +27,19 @@ const TestInfo kTests[] = {
     {TestKind::shear, "shear", "rad", "N/m"},
     {TestKind::bending_warp, "bending-warp", "1/m", "N"},
     {TestKind::bending_weft, "bending-weft", "1/m", "N"},
+    {TestKind::bending_diagonal, "bending-diagonal", "1/m", "N"},
+    {TestKind::bending_antidiagonal, "bending-antidiagonal", "1/m", "N"},
+    {TestKind::stretch_shear, "stretch-shear", "1", "N/m"},
+    {TestKind::stretch_bending, "stretch-bending", "1", "N/m"},
 };
+constexpr int kDefaultTests = 6;  // the first six: the default battery
+
+// Combined loads: the shear angle per unit strain of stretch-shear (2 % with 0.2 rad,
+// below the lock), and the turning over the patch per unit strain of stretch-bending
+// (2 % with one radian, the top of the bending ladder).
+constexpr double kShearPerStrain = 10.0;
+constexpr double kTurningPerStrain = 50.0;
+constexpr const char* kRotatedPrefix = "rotated-";
 
 const TestInfo& info(TestKind k) {
   for (const TestInfo& t : kTests)
@@ -62,6 +76,8 @@ void arc(double s, double kappa, double* along, double* rise, double* d_along, d
 
 }  // namespace
 
+Mat3 test_rotation() { return Eigen::AngleAxisd(2.0, Vec3(1, 2, 3).normalized()).toRotationMatrix(); }
+
 const std::vector<std::string>& test_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
@@ -71,7 +87,18 @@ const std::vector<std::string>& test_names() {
   return names;
 }
 
+const std::vector<std::string>& default_test_names() {
+  static const std::vector<std::string> names(test_names().begin(), test_names().begin() + kDefaultTests);
+  return names;
+}
+
 std::string test_name(TestKind kind) { return info(kind).name; }
+std::string test_name(const TestSpec& test) { return (test.rotated ? kRotatedPrefix : "") + test_name(test.kind); }
+
+bool clamps_rotation(TestKind kind) {
+  return kind == TestKind::bending_warp || kind == TestKind::bending_weft || kind == TestKind::bending_diagonal ||
+         kind == TestKind::bending_antidiagonal || kind == TestKind::stretch_bending;
+}
 std::string load_unit(TestKind kind) { return info(kind).load_unit; }
 std::string response_unit(TestKind kind) { return info(kind).response_unit; }
 
@@ -80,7 +107,14 @@ TestKind test_kind(const std::string& name) {
     if (name == t.name) return t.kind;
   std::string known;
   for (const TestInfo& t : kTests) known += std::string(known.empty() ? "" : ", ") + t.name;
-  throw std::invalid_argument("unknown test '" + name + "', expected one of " + known);
+  throw std::invalid_argument("unknown test '" + name + "', expected one of " + known + " (each also as " +
+                              kRotatedPrefix + "NAME)");
+}
+
+TestSpec test_spec(const std::string& name) {
+  const std::string prefix = kRotatedPrefix;
+  const bool rotated = name.rfind(prefix, 0) == 0;
+  return {test_kind(rotated ? name.substr(prefix.size()) : name), {}, rotated};
 }
 
 std::vector<double> default_ladder(TestKind kind, int patch, double L) {
@@ -89,6 +123,8 @@ std::vector<double> default_ladder(TestKind kind, int patch, double L) {
     case TestKind::uniaxial_warp:
     case TestKind::uniaxial_weft:
     case TestKind::biaxial:
+    case TestKind::stretch_shear:
+    case TestKind::stretch_bending:
       for (int k = 1; k <= 8; ++k) l.push_back(0.0025 * k);  // strains up to 2 %
       break;
     case TestKind::shear:
@@ -96,6 +132,8 @@ std::vector<double> default_ladder(TestKind kind, int patch, double L) {
       break;
     case TestKind::bending_warp:
     case TestKind::bending_weft:
+    case TestKind::bending_diagonal:
+    case TestKind::bending_antidiagonal:
       // curvatures up to one radian of turning over the patch
       for (int k = 1; k <= 8; ++k) l.push_back(k / (8.0 * (patch - 1) * L));
       break;
@@ -133,60 +171,107 @@ Scene material_test_scene(const Scene& scene, int patch, bool sliding) {
   return t;
 }
 
-Vec3 PatchMap::position(int i, int j, double lambda) const {
-  const double c = 0.5 * (patch - 1) * spacing_m;
-  const double u = i * spacing_m - c, v = j * spacing_m - c;
+namespace {
+
+// The bending direction b of a diagonal cylinder and the axis direction a in the plane.
+void diagonal_axes(TestKind kind, Vec2* b, Vec2* a) {
+  const double h = std::sqrt(0.5);
+  *b = kind == TestKind::bending_diagonal ? Vec2(h, h) : Vec2(h, -h);
+  *a = Vec2(-b->y(), b->x());
+}
+
+// The map of crossing (i, j) under load λ, about the patch centre and unrotated: its
+// position x and its derivative dx = ∂x/∂λ.
+void local_map(const PatchMap& m, int i, int j, double lambda, Vec3* x, Vec3* dx) {
+  const double c = 0.5 * (m.patch - 1) * m.spacing_m;
+  const double u = i * m.spacing_m - c, v = j * m.spacing_m - c;
   double a, r, da, dr;
-  Vec3 x = Vec3::Zero();
-  switch (kind) {
-    case TestKind::uniaxial_warp: x = Vec3((1 + lambda) * u, v, 0); break;
-    case TestKind::uniaxial_weft: x = Vec3(u, (1 + lambda) * v, 0); break;
-    case TestKind::biaxial: x = Vec3((1 + lambda) * u, (1 + lambda) * v, 0); break;
+  switch (m.kind) {
+    case TestKind::uniaxial_warp:
+      *x = Vec3((1 + lambda) * u, v, 0);
+      *dx = Vec3(u, 0, 0);
+      break;
+    case TestKind::uniaxial_weft:
+      *x = Vec3(u, (1 + lambda) * v, 0);
+      *dx = Vec3(0, v, 0);
+      break;
+    case TestKind::biaxial:
+      *x = Vec3((1 + lambda) * u, (1 + lambda) * v, 0);
+      *dx = Vec3(u, v, 0);
+      break;
     case TestKind::shear: {
       // picture frame: warp and weft each turn by λ/2 towards each other, lengths kept
       const double cs = std::cos(lambda / 2), sn = std::sin(lambda / 2);
-      x = Vec3(u * cs + v * sn, u * sn + v * cs, 0);
+      *x = Vec3(u * cs + v * sn, u * sn + v * cs, 0);
+      *dx = 0.5 * Vec3(-u * sn + v * cs, u * cs - v * sn, 0);
       break;
     }
     case TestKind::bending_warp:
       arc(u, lambda, &a, &r, &da, &dr);
-      x = Vec3(a, v, r);
+      *x = Vec3(a, v, r);
+      *dx = Vec3(da, 0, dr);
       break;
     case TestKind::bending_weft:
       arc(v, lambda, &a, &r, &da, &dr);
-      x = Vec3(u, a, r);
+      *x = Vec3(u, a, r);
+      *dx = Vec3(0, da, dr);
       break;
+    case TestKind::bending_diagonal:
+    case TestKind::bending_antidiagonal: {
+      // the cylinder of curvature λ bending along b, its axis along a
+      Vec2 b, ax;
+      diagonal_axes(m.kind, &b, &ax);
+      arc(b.dot(Vec2(u, v)), lambda, &a, &r, &da, &dr);
+      const Vec2 p = a * b + ax.dot(Vec2(u, v)) * ax;
+      *x = Vec3(p.x(), p.y(), r);
+      *dx = Vec3(da * b.x(), da * b.y(), dr);
+      break;
+    }
+    case TestKind::stretch_shear: {
+      // warp strain λ, then the picture frame at γ = kShearPerStrain·λ
+      const double g = kShearPerStrain * lambda, cs = std::cos(g / 2), sn = std::sin(g / 2);
+      const double s = (1 + lambda) * u, dg = 0.5 * kShearPerStrain;
+      *x = Vec3(s * cs + v * sn, s * sn + v * cs, 0);
+      *dx = Vec3(u * cs + dg * (-s * sn + v * cs), u * sn + dg * (s * cs - v * sn), 0);
+      break;
+    }
+    case TestKind::stretch_bending: {
+      // warp strain λ along the arc of the cylinder of curvature κ = cλ, c = kTurningPerStrain/((N−1)L):
+      // x = arc(s, κ) with s = (1+λ)u, dx/dλ = ∂x/∂s·u + ∂x/∂κ·c, ∂(along, rise)/∂s = (cos κs, sin κs)
+      const double k_per = kTurningPerStrain / ((m.patch - 1) * m.spacing_m), kappa = k_per * lambda;
+      const double s = (1 + lambda) * u;
+      arc(s, kappa, &a, &r, &da, &dr);
+      *x = Vec3(a, v, r);
+      *dx = Vec3(std::cos(kappa * s) * u + da * k_per, 0, std::sin(kappa * s) * u + dr * k_per);
+      break;
+    }
   }
+}
+
+}  // namespace
+
+Vec3 PatchMap::position(int i, int j, double lambda) const {
+  Vec3 x, dx;
+  local_map(*this, i, j, lambda, &x, &dx);
+  if (rotated) x = test_rotation() * x;
+  const double c = 0.5 * (patch - 1) * spacing_m;
   return x + Vec3(c, c, height_m);
 }
 
 Vec3 PatchMap::derivative(int i, int j, double lambda) const {
-  const double c = 0.5 * (patch - 1) * spacing_m;
-  const double u = i * spacing_m - c, v = j * spacing_m - c;
-  double a, r, da, dr;
-  switch (kind) {
-    case TestKind::uniaxial_warp: return Vec3(u, 0, 0);
-    case TestKind::uniaxial_weft: return Vec3(0, v, 0);
-    case TestKind::biaxial: return Vec3(u, v, 0);
-    case TestKind::shear: {
-      const double cs = std::cos(lambda / 2), sn = std::sin(lambda / 2);
-      return 0.5 * Vec3(-u * sn + v * cs, u * cs - v * sn, 0);
-    }
-    case TestKind::bending_warp: arc(u, lambda, &a, &r, &da, &dr); return Vec3(da, 0, dr);
-    case TestKind::bending_weft: arc(v, lambda, &a, &r, &da, &dr); return Vec3(0, da, dr);
-  }
-  return Vec3::Zero();
+  Vec3 x, dx;
+  local_map(*this, i, j, lambda, &x, &dx);
+  return rotated ? Vec3(test_rotation() * dx) : dx;
 }
 
 ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>& x_dof, const TestSpec& test,
                                 int patch, double L, const std::vector<std::string>& keys,
                                 const EquilibriumOptions& options) {
-  const PatchMap map{test.kind, patch, L, 0.0};
+  const PatchMap map{test.kind, patch, L, 0.0, test.rotated};
   // Held crossings: the outer ring; for bending the next ring too, so that the
   // edges are clamped in rotation as well (a ring held in position only lets the
   // rows relax like pinned beams, away from the cylinder).
-  const bool bending = test.kind == TestKind::bending_warp || test.kind == TestKind::bending_weft;
-  const int depth = bending ? 2 : 1;
+  const int depth = clamps_rotation(test.kind) ? 2 : 1;
   std::vector<int> ring, prescribed;
   for (int j = 0; j < patch; ++j)
     for (int i = 0; i < patch; ++i)
@@ -201,6 +286,16 @@ ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>
   Vec q = model.initial_q();
   const Vec zero_v = Vec::Zero(model.num_dofs());
   Vec dfdp, s;
+  if (test.rotated) {
+    // Turn the rest patch about its centre first; the ladder's increments are turned alike.
+    const Mat3 Q = test_rotation();
+    const Vec3 c0(0.5 * (patch - 1) * L, 0.5 * (patch - 1) * L, map.height_m);
+    for (int j = 0; j < patch; ++j)
+      for (int i = 0; i < patch; ++i) {
+        auto x = q.segment<3>(x_dof(i, j));
+        x = c0 + Q * (Vec3(x) - c0);
+      }
+  }
   double previous = 0.0;
   for (double lambda : test.ladder) {
     // Every crossing moves with the map (the ring exactly, the interior as a first guess).
@@ -211,7 +306,7 @@ ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>
     const EquilibriumResult r = eq.solve(q, options);
     if (!r.converged) {
       std::ostringstream m;
-      m << test_name(test.kind) << " at " << lambda << " " << load_unit(test.kind) << ": " << r.message;
+      m << test_name(test) << " at " << lambda << " " << load_unit(test.kind) << ": " << r.message;
       curve.complete = false;
       curve.message = m.str();
       break;

@@ -26,21 +26,49 @@
 
 namespace wl {
 
-enum class TestKind { uniaxial_warp, uniaxial_weft, biaxial, shear, bending_warp, bending_weft };
+// The six of the default battery, then the wider battery (docs/calibration.md §2.1):
+// bending along the mesh's diagonal and along the other diagonal, and the
+// combined loads stretch with shear and stretch with bending.
+enum class TestKind {
+  uniaxial_warp,
+  uniaxial_weft,
+  biaxial,
+  shear,
+  bending_warp,
+  bending_weft,
+  bending_diagonal,
+  bending_antidiagonal,
+  stretch_shear,
+  stretch_bending
+};
 
 struct TestSpec {
   TestKind kind = TestKind::uniaxial_warp;
   std::vector<double> ladder;  // load parameters λ, increasing, > 0
+  // The same load on the patch turned by the rigid rotation test_rotation()
+  // about its centre: an objective model answers exactly as unrotated.
+  bool rotated = false;
 };
 
+// The rigid rotation of rotated tests: 2 rad about the axis (1, 2, 3)/√14.
+Mat3 test_rotation();
+
 // Names as on the command line: uniaxial-warp, uniaxial-weft, biaxial, shear,
-// bending-warp, bending-weft.
+// bending-warp, bending-weft, bending-diagonal, bending-antidiagonal,
+// stretch-shear, stretch-bending; each also as rotated-NAME.
 const std::vector<std::string>& test_names();
+// The six of the default battery (calibrate without --tests).
+const std::vector<std::string>& default_test_names();
 std::string test_name(TestKind kind);
+std::string test_name(const TestSpec& test);  // with the "rotated-" prefix
 // Throws std::invalid_argument naming the known tests.
 TestKind test_kind(const std::string& name);
+// The kind and the rotation of a name, which may carry the "rotated-" prefix.
+TestSpec test_spec(const std::string& name);
 std::string load_unit(TestKind kind);      // "1" (strain), "rad", "1/m"
 std::string response_unit(TestKind kind);  // "N/m" or "N"
+// Tests whose edges are clamped in rotation too (two held rings): bending and stretch with bending.
+bool clamps_rotation(TestKind kind);
 // Default ladder for a patch of N crossings per side at spacing L.
 std::vector<double> default_ladder(TestKind kind, int patch, double spacing_m);
 
@@ -61,6 +89,7 @@ struct PatchMap {
   TestKind kind;
   int patch;
   double spacing_m, height_m;
+  bool rotated = false;
   Vec3 position(int i, int j, double lambda) const;
   Vec3 derivative(int i, int j, double lambda) const;
 };

@@ -182,7 +182,9 @@ int main(int argc, char** argv) {
       "Fit the continuum's [fem] parameters to virtual material tests of the scene's fabric at yarn "
       "level (Ceres), validate on motion; writes params.toml, calibration.json, curves.csv, validation.csv");
   calibrate->add_option("scene", cal_scene, "Scene file (TOML) whose fabric is calibrated")->required();
-  calibrate->add_option("--tests", cal_tests, "Comma-separated tests (default all): " + joined(wl::test_names()));
+  calibrate->add_option("--tests", cal_tests,
+                        "Comma-separated tests (default the first six): " + joined(wl::test_names()) +
+                            "; each also as rotated-NAME (the patch turned rigidly)");
   calibrate->add_option("--patch", cal.patch,
                         "Crossings per side of the test patch (default: the scene's, at most 33)");
   calibrate->add_option(
@@ -200,6 +202,11 @@ int main(int argc, char** argv) {
                       "Leave the yarn sliding coordinates free in the tests (default frozen)");
   calibrate->add_flag("--border-strip", cal.border_strip,
                       "Continuum with bars for the border yarns' outer half spacing ([fem] border_strip)");
+  calibrate->add_flag("--grid-line-bending", cal.grid_line_bending,
+                      "Continuum whose grid lines bend like yarns instead of hinges ([fem] grid_line_bending)");
+  calibrate->add_flag("--diagonal-bending", cal.diagonal_bending,
+                      "Fit the 45° hinges' own bending stiffness ([fem] diagonal_bending_N_m, informed by the "
+                      "bending-diagonal and bending-antidiagonal tests)");
   calibrate->add_option("--validate", cal_validate, "Scene to validate the calibrated continuum on (repeatable)");
   std::string cal_resolution = "controlled";
   double cal_rtol = 1e-4;

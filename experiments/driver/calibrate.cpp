@@ -93,6 +93,8 @@ Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
   s.fem.shear_lock_exponent = m.shear_lock_exponent;
   s.fem.warp_bending_N_m = m.warp_bending_N_m;
   s.fem.weft_bending_N_m = m.weft_bending_N_m;
+  s.fem.diagonal_bending_N_m.reset();
+  if (m.diagonal_bending_N_m > 0) s.fem.diagonal_bending_N_m = m.diagonal_bending_N_m;
   return s;
 }
 
@@ -121,12 +123,14 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   const int patch = c.patch > 0 ? c.patch : std::max(std::min(size, 33), minimum_patch(p.scene));
   p.test_scene = material_test_scene(p.scene, patch, c.sliding);  // too small: invalid_argument
   p.test_scene.fem.border_strip = c.border_strip;
-  std::vector<std::string> names = c.tests.empty() ? test_names() : c.tests;
+  p.test_scene.fem.grid_line_bending = c.grid_line_bending;
+  std::vector<std::string> names = c.tests.empty() ? default_test_names() : c.tests;
   for (const std::string& name : names) {
-    const TestKind kind = test_kind(name);  // unknown: invalid_argument
-    for (const TestSpec& t : p.tests)
-      if (t.kind == kind) throw std::invalid_argument("--tests: '" + name + "' is listed twice");
-    TestSpec t{kind, default_ladder(kind, patch, p.scene.spacing_m)};
+    TestSpec t = test_spec(name);  // unknown: invalid_argument
+    const TestKind kind = t.kind;
+    for (const TestSpec& other : p.tests)
+      if (test_name(other) == test_name(t)) throw std::invalid_argument("--tests: '" + name + "' is listed twice");
+    t.ladder = default_ladder(kind, patch, p.scene.spacing_m);
     if (auto it = c.ladders.find(name); it != c.ladders.end()) t.ladder = it->second;
     if (t.ladder.size() < 2) throw std::invalid_argument("--ladder " + name + ": need at least 2 loads");
     for (size_t i = 0; i < t.ladder.size(); ++i)
@@ -140,8 +144,8 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
     p.tests.push_back(t);
   }
   for (const auto& [name, ladder] : c.ladders) {
-    const TestKind kind = test_kind(name);  // unknown: invalid_argument
-    if (std::none_of(p.tests.begin(), p.tests.end(), [&](const TestSpec& t) { return t.kind == kind; }))
+    const std::string canonical = test_name(test_spec(name));  // unknown: invalid_argument
+    if (std::none_of(p.tests.begin(), p.tests.end(), [&](const TestSpec& t) { return test_name(t) == canonical; }))
       throw std::invalid_argument("--ladder " + name + ": the test is not among --tests");
   }
   FemMaterial probe;
@@ -170,10 +174,10 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   for (const TestSpec& t : p.tests) {
     const ResponseCurve r = run_yarn_test(p.test_scene, t);
     if (c.progress)
-      std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(t.kind).c_str(), r.points.size(),
-                   t.ladder.size(), r.complete ? "" : ", stopped:", r.message.c_str());
+      std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(t).c_str(), r.points.size(), t.ladder.size(),
+                   r.complete ? "" : ", stopped:", r.message.c_str());
     if (r.points.size() < 2) throw std::runtime_error("yarn-level test did not converge: " + r.message);
-    FitCurve fc{{t.kind, {}}, {}};
+    FitCurve fc{{t.kind, {}, t.rotated}, {}};
     for (const ResponsePoint& pt : r.points) {
       fc.test.ladder.push_back(pt.load);
       fc.target.push_back(pt.response);
@@ -183,7 +187,9 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   out.yarn_tests_s = seconds_since(t0);
 
   // 2. Continuum tests at the first guess (also the time of one evaluation of every test).
-  const FemMaterial guess = fem_material(p.scene);
+  FemMaterial guess = fem_material(p.scene);
+  if (c.diagonal_bending && guess.diagonal_bending_N_m <= 0)  // start where the law is off: the mean
+    guess.diagonal_bending_N_m = 0.5 * (guess.warp_bending_N_m + guess.weft_bending_N_m);
   const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
     return run_fem_test(p.test_scene, m, t, keys);
   };
@@ -205,7 +211,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
                  out.fit.converged ? "converged" : "NOT converged", out.fit.cost, out.fit.iterations,
                  out.fit.evaluations, out.fit_s);
     for (size_t i = 0; i < curves.size(); ++i)
-      std::fprintf(stderr, "    %-14s residual %.3g %% of the curve's range\n", test_name(curves[i].test.kind).c_str(),
+      std::fprintf(stderr, "    %-14s residual %.3g %% of the curve's range\n", test_name(curves[i].test).c_str(),
                    100 * out.fit.relative_rms[i]);
   }
 
@@ -218,7 +224,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
       for (size_t k = 0; k < curves[i].target.size(); ++k) {
         const TestKind kind = curves[i].test.kind;
         const double fg = k < first[i].points.size() ? first[i].points[k].response : NAN;
-        csv.row({test_name(kind), csv_number(curves[i].test.ladder[k]), load_unit(kind),
+        csv.row({test_name(curves[i].test), csv_number(curves[i].test.ladder[k]), load_unit(kind),
                  csv_number(curves[i].target[k]), csv_number(out.fit.fitted[i][k]), csv_number(fg),
                  response_unit(kind)});
       }
@@ -276,7 +282,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     Json vars = Json::array();
     for (const auto& [name, m] : variants) {
       if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
-      const Scene variant_scene = with_material(vs, m, c.border_strip && name != "first_guess");
+      Scene variant_scene = with_material(vs, m, c.border_strip && name != "first_guess");
+      variant_scene.fem.grid_line_bending = c.grid_line_bending && name != "first_guess";
       const VariantRun vr = run_continuum_variant(name, variant_scene, yarn, iopt, c.progress);
       const TimeErrorEstimate fem_error = estimate_time_error(variant_scene, "fem", vs.integrator, iopt, vr.run);
       for (size_t k = 0; k < vr.times.size(); ++k)
@@ -312,7 +319,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   for (double r : out.fit.relative_rms) worst = std::max(worst, r);
   std::ostringstream rms;
   for (size_t i = 0; i < curves.size(); ++i)
-    rms << (i ? ", " : "") << test_name(curves[i].test.kind) << " " << out.fit.relative_rms[i];
+    rms << (i ? ", " : "") << test_name(curves[i].test) << " " << out.fit.relative_rms[i];
   write_fem_parameter_file(
       (c.out_dir / "params.toml").string(), calibrated,
       {{"source_scene", c.scene_path.string()},
@@ -320,6 +327,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
        {"git_revision", git_revision()},
        {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
        {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene" : "false"},
+       {"grid_line_bending",
+        c.grid_line_bending ? "fitted with [fem] grid_line_bending = true: set it in the scene" : "false"},
        {"residual_rms_relative", rms.str()},
        {"areal_density", "total yarn mass of the scene over the crossing grid's area"},
        {"created", utc_now()}});
@@ -331,6 +340,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   j.set("patch", patch);
   j.set("sliding", c.sliding);
   j.set("border_strip", c.border_strip);
+  j.set("grid_line_bending", c.grid_line_bending);
   Json params = Json::array();
   for (const FittedParameter& fp : out.fit.parameters) {
     Json e = Json::object();
@@ -366,7 +376,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   Json tests = Json::array();
   for (size_t i = 0; i < curves.size(); ++i) {
     Json e = Json::object();
-    e.set("test", test_name(curves[i].test.kind));
+    e.set("test", test_name(curves[i].test));
     e.set("points", static_cast<int>(curves[i].target.size()));
     e.set("residual_rms_relative", out.fit.relative_rms[i]);
     e.set("load_unit", load_unit(curves[i].test.kind));

@@ -28,6 +28,8 @@ struct CalibrateConfig {
   std::map<std::string, std::vector<double>> ladders;  // per test name; absent = default_ladder()
   bool sliding = false;                                // sliding coordinates free in the tests
   bool border_strip = false;                           // continuum with [fem] border_strip (tests and validation)
+  bool grid_line_bending = false;                      // continuum with [fem] grid_line_bending (tests and validation)
+  bool diagonal_bending = false;  // fit the 45° hinges' own stiffness ([fem] diagonal_bending_N_m), from the mean
   FitOptions fit;
   std::vector<std::filesystem::path> validate;  // scenes to validate on
   Resolution resolution;                        // of the validation runs (both sides)

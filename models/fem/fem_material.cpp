@@ -28,6 +28,7 @@ const Key kKeys[] = {
     {"shear_lock_exponent", &FemMaterial::shear_lock_exponent, "a number > 0"},
     {"warp_bending_N_m", &FemMaterial::warp_bending_N_m, "a number > 0 (N·m)"},
     {"weft_bending_N_m", &FemMaterial::weft_bending_N_m, "a number > 0 (N·m)"},
+    {"diagonal_bending_N_m", &FemMaterial::diagonal_bending_N_m, "a number > 0 (N·m)"},
 };
 
 [[noreturn]] void fail(const std::string& file, int line, const std::string& key, const std::string& value,
@@ -145,6 +146,7 @@ FemMaterial fem_material(const Scene& s) {
   set(m.shear_lock_exponent, f.shear_lock_exponent);
   set(m.warp_bending_N_m, f.warp_bending_N_m);
   set(m.weft_bending_N_m, f.weft_bending_N_m);
+  set(m.diagonal_bending_N_m, f.diagonal_bending_N_m);
   return m;
 }
 

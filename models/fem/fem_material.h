@@ -11,6 +11,9 @@
 //                               when R/L ≥ 1/√2)
 //        shear_lock_exponent  = contact.lock_exponent (c)
 //        warp_bending_N_m     = k_b/L  (k_b = B·πR², mean over warps), weft likewise
+//        diagonal_bending_N_m = absent (0): the 45° hinges bend with the mean of
+//                               warp and weft; > 0 their own stiffness
+//                               (terms/hinge_bending.h, docs/models.md §6.5.1)
 //        areal_density_kg_per_m2 = (ρ_warp + ρ_weft)/L  (means over yarns), so that
 //                               both models carry the same mass per area (up to
 //                               the yarn ends at the border);
@@ -43,6 +46,7 @@ struct FemMaterial {
   double shear_lock_angle_rad = 0.0;  // 0: no locking
   double shear_lock_exponent = 0.0;   // ≤ 0: no locking
   double warp_bending_N_m = 0.0, weft_bending_N_m = 0.0;
+  double diagonal_bending_N_m = 0.0;  // ≤ 0: off (45° hinges take the mean of warp and weft)
 };
 
 // Scene keys of the material parameters, as terms name them in
@@ -54,6 +58,7 @@ inline constexpr const char* kFemShearLockAngle = "fem.shear_lock_angle_rad";
 inline constexpr const char* kFemShearLockExponent = "fem.shear_lock_exponent";
 inline constexpr const char* kFemWarpBending = "fem.warp_bending_N_m";
 inline constexpr const char* kFemWeftBending = "fem.weft_bending_N_m";
+inline constexpr const char* kFemDiagonalBending = "fem.diagonal_bending_N_m";
 inline constexpr const char* kFemArealDensity = "fem.areal_density_kg_per_m2";
 
 class FemParameterError : public std::invalid_argument {  // bad input: exit 2

@@ -9,6 +9,7 @@
 #include "models/common/yarn_damper.h"
 #include "models/fem/deformation_gradient.h"
 #include "models/fem/terms/border_stretch.h"
+#include "models/fem/terms/grid_line_bending.h"
 #include "models/fem/terms/hinge_bending.h"
 #include "models/fem/terms/in_plane_shear.h"
 #include "models/fem/terms/lumped_mass.h"
@@ -98,8 +99,38 @@ void FemModel::build() {
     }
     terms_.push_back(std::move(t));
   }
-  if (on.bending && !hinges_.empty()) {
-    auto t = std::make_unique<HingeBendingTerm>(material_.warp_bending_N_m, material_.weft_bending_N_m);
+  if (on.bending && scene_.fem.grid_line_bending) {
+    // Each interior vertex of a grid line bends like a yarn (terms/grid_line_bending.h); a line
+    // stands for the cloth halfway to its neighbours, so a border line for half a spacing.
+    const int na = static_cast<int>(mesh_.grid_i.size()), nb = static_cast<int>(mesh_.grid_j.size());
+    auto t = std::make_unique<GridLineBendingTerm>();
+    auto width = [&](const std::vector<int>& lines, int k) {
+      const double prev = k > 0 ? lines[k] - lines[k - 1] : 0,
+                   next = k + 1 < (int)lines.size() ? lines[k + 1] - lines[k] : 0;
+      return 0.5 * (prev + next) * scene_.spacing_m;
+    };
+    auto add_line_element = [&](int mid, int next, int prev, double k, double w, const char* key) {
+      std::array<int, 9> s;
+      for (int c = 0; c < 3; ++c) {
+        s[c] = 3 * mid + c;
+        s[3 + c] = 3 * next + c;
+        s[6 + c] = 3 * prev + c;
+      }
+      t->add(s, k * w, (mesh_.uv[next] - mesh_.uv[mid]).norm());
+      t->tag_last(key, k);
+    };
+    for (int b = 0; b < nb; ++b)  // warp lines, along u
+      for (int a = 1; a + 1 < na; ++a)
+        add_line_element(mesh_.grid_vertex(a, b), mesh_.grid_vertex(a + 1, b), mesh_.grid_vertex(a - 1, b),
+                         material_.warp_bending_N_m, width(mesh_.grid_j, b), kFemWarpBending);
+    for (int a = 0; a < na; ++a)  // weft lines, along v
+      for (int b = 1; b + 1 < nb; ++b)
+        add_line_element(mesh_.grid_vertex(a, b), mesh_.grid_vertex(a, b + 1), mesh_.grid_vertex(a, b - 1),
+                         material_.weft_bending_N_m, width(mesh_.grid_i, a), kFemWeftBending);
+    terms_.push_back(std::move(t));
+  } else if (on.bending && !hinges_.empty()) {
+    auto t = std::make_unique<HingeBendingTerm>(material_.warp_bending_N_m, material_.weft_bending_N_m,
+                                                material_.diagonal_bending_N_m);
     for (const Hinge& h : hinges_) {
       std::array<int, 12> s;
       for (int k = 0; k < 4; ++k)
@@ -268,6 +299,7 @@ std::map<std::string, std::string> FemModel::describe() const {
       " shear_lock_angle_rad=" + format(p.shear_lock_angle_rad) +
       " shear_lock_exponent=" + format(p.shear_lock_exponent) + " warp_bending_N_m=" + format(p.warp_bending_N_m) +
       " weft_bending_N_m=" + format(p.weft_bending_N_m);
+  if (p.diagonal_bending_N_m > 0) m["fem_parameters"] += " diagonal_bending_N_m=" + format(p.diagonal_bending_N_m);
   return m;
 }
 

@@ -48,8 +48,11 @@
 //     mesh_file, parameter_file   paths relative to the scene file's directory,
 //       resolved on load; the file must exist
 //     areal_density_kg_per_m2, warp_stretch_N_per_m, weft_stretch_N_per_m, shear_N_per_m,
-//     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m
-//       optional numbers > 0 (absent = computed / taken from parameter_file)
+//     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m,
+//     diagonal_bending_N_m
+//       optional numbers > 0
+//     border_strip, grid_line_bending   optional booleans (default false); grid_line_bending
+//       needs the grid mesh (no mesh_file) (absent = computed / taken from parameter_file)
 //
 // ERRORS: SceneError with file, line (source line of the offending value; for a
 // missing key or a violated default, the line of its table), the dotted key
@@ -260,6 +263,9 @@ void read_fem(TableReader& top, Scene& s) {
     *out = p.string();
   }
   f->read_bool("border_strip", fem.border_strip);
+  f->read_bool("grid_line_bending", fem.grid_line_bending);
+  if (fem.grid_line_bending && !fem.mesh_file.empty())
+    f->fail_key("grid_line_bending", "false with a mesh_file (grid lines exist on the grid mesh only)", "true");
   f->read_number("areal_density_kg_per_m2", fem.areal_density_kg_per_m2, "a number > 0 (kg/m²)", positive);
   f->read_number("warp_stretch_N_per_m", fem.warp_stretch_N_per_m, "a number > 0 (N/m)", positive);
   f->read_number("weft_stretch_N_per_m", fem.weft_stretch_N_per_m, "a number > 0 (N/m)", positive);
@@ -268,6 +274,7 @@ void read_fem(TableReader& top, Scene& s) {
   f->read_number("shear_lock_exponent", fem.shear_lock_exponent, "a number > 0", positive);
   f->read_number("warp_bending_N_m", fem.warp_bending_N_m, "a number > 0 (N·m)", positive);
   f->read_number("weft_bending_N_m", fem.weft_bending_N_m, "a number > 0 (N·m)", positive);
+  f->read_number("diagonal_bending_N_m", fem.diagonal_bending_N_m, "a number > 0 (N·m)", positive);
   f->finish();
 }
 

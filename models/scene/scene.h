@@ -55,7 +55,9 @@ struct FemSettings {
   std::optional<double> shear_lock_angle_rad;  // shear angle where stiffening starts
   std::optional<double> shear_lock_exponent;
   std::optional<double> warp_bending_N_m, weft_bending_N_m;  // per unit width
-  bool border_strip = false;  // bars for the border yarns' outer half spacing (terms/border_stretch.h)
+  std::optional<double> diagonal_bending_N_m;                // 45° hinges; absent: the mean of warp and weft
+  bool border_strip = false;       // bars for the border yarns' outer half spacing (terms/border_stretch.h)
+  bool grid_line_bending = false;  // bending of the grid lines instead of hinges (terms/grid_line_bending.h)
 };
 
 struct TermSwitches {

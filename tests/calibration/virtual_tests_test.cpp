@@ -62,29 +62,36 @@ TEST(VirtualTests, FemBendingAtSmallCurvatureIsTheBendingStiffness) {
 
 TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
   // Shear at 0.2 and 0.4 rad: below and past the lock angle (0.52 rad here... and its stiffening).
-  const Scene patch = material_test_scene(hanging_wind(), 7);
-  const FemMaterial m = default_fem_material(patch);
-  for (const std::string& name : test_names()) {
-    const TestKind kind = test_kind(name);
-    const TestSpec test{kind,
-                        {default_ladder(kind, 7, patch.spacing_m)[3], default_ladder(kind, 7, patch.spacing_m)[7]}};
-    const std::vector<std::string> keys = informed_parameters(kind, m);
-    std::vector<std::string> prefixed;
-    for (const auto& k : keys) prefixed.push_back("fem." + k);
-    const ResponseCurve c = run_fem_test(patch, m, test, prefixed);
-    ASSERT_TRUE(c.complete) << c.message;
-    for (size_t k = 0; k < keys.size(); ++k) {
-      FemMaterial hi = m, lo = m;
-      const double p = material_value(hi, keys[k]), h = 1e-5 * p;
-      material_value(hi, keys[k]) = p + h;
-      material_value(lo, keys[k]) = p - h;
-      const ResponseCurve ch = run_fem_test(patch, hi, test), cl = run_fem_test(patch, lo, test);
-      for (size_t i = 0; i < c.points.size(); ++i) {
-        const double fd = (ch.points[i].response - cl.points[i].response) / (2 * h);
-        const double exact = c.sensitivities[i][k];
-        EXPECT_NE(exact, 0.0) << name << " " << keys[k];
-        EXPECT_NEAR(exact, fd, 1e-5 * std::abs(fd) + 1e-9 * std::abs(c.points[i].response) / p)
-            << name << " " << keys[k] << " at " << c.points[i].load;
+  // Every test of the wider battery too, with the diagonal stiffness on (0.3 of the mean, so that
+  // the 45° hinges differ from the law without it); then the bending tests with grid-line bending.
+  for (const bool grid_lines : {false, true}) {
+    Scene patch = material_test_scene(hanging_wind(), 7);
+    patch.fem.grid_line_bending = grid_lines;
+    FemMaterial m = default_fem_material(patch);
+    if (!grid_lines) m.diagonal_bending_N_m = 0.15 * (m.warp_bending_N_m + m.weft_bending_N_m);
+    for (const std::string& name : test_names()) {
+      const TestKind kind = test_kind(name);
+      if (grid_lines && !clamps_rotation(kind)) continue;
+      const TestSpec test{kind,
+                          {default_ladder(kind, 7, patch.spacing_m)[3], default_ladder(kind, 7, patch.spacing_m)[7]}};
+      const std::vector<std::string> keys = informed_parameters(kind, m);
+      std::vector<std::string> prefixed;
+      for (const auto& k : keys) prefixed.push_back("fem." + k);
+      const ResponseCurve c = run_fem_test(patch, m, test, prefixed);
+      ASSERT_TRUE(c.complete) << c.message;
+      for (size_t k = 0; k < keys.size(); ++k) {
+        FemMaterial hi = m, lo = m;
+        const double p = material_value(hi, keys[k]), h = 1e-4 * p;
+        material_value(hi, keys[k]) = p + h;
+        material_value(lo, keys[k]) = p - h;
+        const ResponseCurve ch = run_fem_test(patch, hi, test), cl = run_fem_test(patch, lo, test);
+        for (size_t i = 0; i < c.points.size(); ++i) {
+          const double fd = (ch.points[i].response - cl.points[i].response) / (2 * h);
+          const double exact = c.sensitivities[i][k];
+          EXPECT_NE(exact, 0.0) << name << " " << keys[k];
+          EXPECT_NEAR(exact, fd, 1e-5 * std::abs(fd) + 1e-9 * std::abs(c.points[i].response) / p)
+              << name << " " << keys[k] << " at " << c.points[i].load << (grid_lines ? " (grid lines)" : "");
+        }
       }
     }
   }

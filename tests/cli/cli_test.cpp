@@ -287,6 +287,8 @@ TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
   const fs::path out = dir_ / "cal";
   const std::vector<std::pair<std::string, std::string>> cases{
       {"--tests uniaxial-warp,twist", "unknown test 'twist'"},
+      {"--tests shear,rotated-twist", "unknown test 'twist'"},
+      {"--tests shear,bending-diagonal,shear", "'shear' is listed twice"},
       {"--ladder shear=", "--ladder shear: empty list"},
       {"--ladder shear=0.1,-0.2", "expected a comma-separated list of numbers > 0"},
       {"--ladder shear=0.2,0.1", "expected increasing finite loads > 0"},

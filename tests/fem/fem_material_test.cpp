@@ -38,6 +38,8 @@ TEST(FemMaterial, SceneTableOverridesDefaults) {
   EXPECT_DOUBLE_EQ(m.weft_stretch_N_per_m, default_fem_material(s).weft_stretch_N_per_m);
 }
 
+std::string error_of(const std::string& text);
+
 TEST(FemMaterial, ParameterFileOverridesAndRoundTrips) {
   FemMaterial base;
   base.shear_N_per_m = 5.0;
@@ -48,6 +50,8 @@ TEST(FemMaterial, ParameterFileOverridesAndRoundTrips) {
   EXPECT_DOUBLE_EQ(m.shear_N_per_m, 5.0);
 
   FemMaterial all = default_fem_material(test::fem_scene(3, 3));
+  EXPECT_EQ(all.diagonal_bending_N_m, 0.0);  // the diagonal stiffness is off by default
+  all.diagonal_bending_N_m = 4e-8;
   const std::string path =
       (std::filesystem::temp_directory_path() / ("wl_fem_params_" + std::to_string(::getpid()) + ".toml")).string();
   write_fem_parameter_file(path, all, {{"note", "unit test"}});
@@ -57,6 +61,9 @@ TEST(FemMaterial, ParameterFileOverridesAndRoundTrips) {
   EXPECT_DOUBLE_EQ(back.weft_bending_N_m, all.weft_bending_N_m);
   EXPECT_DOUBLE_EQ(back.shear_lock_angle_rad, all.shear_lock_angle_rad);
   EXPECT_DOUBLE_EQ(back.areal_density_kg_per_m2, all.areal_density_kg_per_m2);
+  EXPECT_DOUBLE_EQ(back.diagonal_bending_N_m, 4e-8);
+  EXPECT_NE(error_of("diagonal_bending_N_m = -1\n").find("key 'diagonal_bending_N_m': got -1, expected a number > 0"),
+            std::string::npos);
 }
 
 std::string error_of(const std::string& text) {

@@ -8,7 +8,9 @@
 #include <Eigen/Geometry>
 
 #include "models/fem/deformation_gradient.h"
+#include "models/fem/fem_material.h"
 #include "models/fem/terms/border_stretch.h"
+#include "models/fem/terms/grid_line_bending.h"
 #include "models/fem/terms/hinge_bending.h"
 #include "models/fem/terms/in_plane_shear.h"
 #include "models/fem/terms/lumped_mass.h"
@@ -167,6 +169,16 @@ TEST(HingeBendingTerm, ForcesMatchEnergyGradient) {
   EXPECT_TRUE(r.ok) << r.detail;
 }
 
+TEST(HingeBendingTerm, DiagonalStiffnessForcesMatchEnergyGradient) {
+  // The law with the 45° hinges' own stiffness, on a 45° edge and on one in between.
+  for (const Vec2& edge : {Vec2(0.012, 0.012), Vec2(0.008, 0.012)}) {
+    HingeBendingTerm t(2e-5, 7e-6, 3e-6);
+    t.add(iota12(), edge, 1.3e-4, 0.4);
+    const auto r = test::check_element(t, 0, hinge_states(), {.rel_step = 1e-7, .rtol = 2e-5, .floor = 1e-14});
+    EXPECT_TRUE(r.ok) << r.detail;
+  }
+}
+
 TEST(HingeBendingTerm, DihedralAngleIsTheFoldAngle) {
   for (double th : {0.0, 0.3, -1.2, 2.5}) {
     const auto q = hinge(th);
@@ -191,6 +203,16 @@ TEST(HingeBendingTerm, StiffnessFollowsEdgeDirectionInUv) {
   EXPECT_DOUBLE_EQ(t.edge_stiffness(Vec2(0, 2)), 3.0);  // along v: crossed by warps
   EXPECT_DOUBLE_EQ(t.edge_stiffness(Vec2(5, 0)), 1.0);  // along u: crossed by wefts
   EXPECT_NEAR(t.edge_stiffness(Vec2(1, 1)), 2.0, 1e-15);
+  // With its own diagonal stiffness: the same along u and v, k_diag at 45° either way, and
+  // the mean law again when k_diag is the mean.
+  HingeBendingTerm d(3.0, 1.0, 0.25);
+  EXPECT_NEAR(d.edge_stiffness(Vec2(0, 2)), 3.0, 1e-15);
+  EXPECT_NEAR(d.edge_stiffness(Vec2(5, 0)), 1.0, 1e-15);
+  EXPECT_NEAR(d.edge_stiffness(Vec2(1, 1)), 0.25, 1e-15);
+  EXPECT_NEAR(d.edge_stiffness(Vec2(1, -1)), 0.25, 1e-15);
+  HingeBendingTerm mean(3.0, 1.0, 2.0);
+  for (const Vec2& e : {Vec2(1, 2), Vec2(3, -1), Vec2(1, 1)})
+    EXPECT_NEAR(mean.edge_stiffness(e), t.edge_stiffness(e), 1e-14);
 }
 
 // ∂f/∂p of every material parameter through the generic checker (calibration's sensitivities).
@@ -232,6 +254,63 @@ TEST(FemTermParameters, BendingDerivativesMatchFiniteDifferences) {
         test::check_parameter_derivative(make, k == 0 ? 2e-5 : 7e-6, k, 0, hinge_states(), {1e-7, 1e-5, 1e-14});
     EXPECT_TRUE(r.ok) << r.detail;
   }
+}
+
+TEST(FemTermParameters, DiagonalBendingDerivativesMatchFiniteDifferences) {
+  const double base[3] = {2e-5, 7e-6, 3e-6};  // k_warp, k_weft, k_diag
+  for (int k = 0; k < 3; ++k) {
+    auto make = [&](double p) {
+      double v[3] = {base[0], base[1], base[2]};
+      v[k] = p;
+      auto t = std::make_unique<HingeBendingTerm>(v[0], v[1], v[2]);
+      t->add(iota12(), Vec2(0.008, 0.012), 1.3e-4, 0.4);  // all three stiffnesses act
+      return std::unique_ptr<Term>(std::move(t));
+    };
+    const auto r = test::check_parameter_derivative(make, base[k], k, 0, hinge_states(), {1e-7, 1e-5, 1e-14});
+    EXPECT_TRUE(r.ok) << r.detail;
+  }
+  EXPECT_EQ(HingeBendingTerm(1, 1, 0.5).parameter_keys().back(), kFemDiagonalBending);
+  EXPECT_EQ(HingeBendingTerm(1, 1).parameter_keys().size(), 2u);  // off: not a parameter
+}
+
+// Three vertices of a grid line: middle, next, previous; bent by θ with some scatter.
+std::vector<test::LocalState> line_states() {
+  std::vector<test::LocalState> states;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  for (double th : {0.0, 0.04, 0.7, -1.5}) {
+    const double l = 0.004;
+    test::LocalState s{{0, 0, 0, l * std::cos(th), 0, l * std::sin(th), -l, 0, 0}, std::vector<double>(9, 0.0)};
+    if (th != 0.0)
+      for (auto& x : s.q) x += 0.0004 * d(rng);
+    states.push_back(s);
+  }
+  return states;
+}
+
+TEST(GridLineBendingTerm, ForcesJacobianAndParameterDerivativeMatchFiniteDifferences) {
+  const std::array<int, 9> s{0, 1, 2, 3, 4, 5, 6, 7, 8};
+  GridLineBendingTerm t;
+  t.add(s, 2e-7 * 0.004, 0.004);
+  auto r = test::check_element(t, 0, line_states(), {.rel_step = 1e-7, .rtol = 2e-5, .floor = 1e-14});
+  EXPECT_TRUE(r.ok) << r.detail;
+  auto make = [&](double k) {
+    auto term = std::make_unique<GridLineBendingTerm>();
+    term->add(s, k * 0.004, 0.004);  // a line of width 4 mm
+    term->tag_last(kFemWarpBending, k);
+    return std::unique_ptr<Term>(std::move(term));
+  };
+  r = test::check_parameter_derivative(make, 2e-7, 0, 0, line_states(), {1e-7, 1e-5, 1e-14});
+  EXPECT_TRUE(r.ok) << r.detail;
+}
+
+TEST(GridLineBendingTerm, EnergyIsTheYarnLawOfTheTurningAngle) {
+  // V = k θ²/(2l) for a line of stiffness k (N·m²) turning by θ at its middle vertex.
+  const double l = 0.004, k = 3e-9, th = 0.3;
+  GridLineBendingTerm t;
+  t.add({0, 1, 2, 3, 4, 5, 6, 7, 8}, k, l);
+  const double q[9] = {0, 0, 0, l * std::cos(th), l * std::sin(th), 0, -l, 0, 0};
+  EXPECT_NEAR(t.energy(0, q), k * th * th / (2 * l), 1e-12 * k * th * th / l);
 }
 
 TEST(BorderStretchTerm, ForcesAndParameterDerivativesMatchFiniteDifferences) {

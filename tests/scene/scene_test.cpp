@@ -288,6 +288,26 @@ TEST(SceneErrors, MissingFile) {
   }
 }
 
+TEST(SceneFiles, GridLineBendingNeedsTheGridMesh) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "scene_grid_lines";
+  fs::create_directories(dir);
+  std::ofstream(dir / "m.vtu") << "x";
+  std::ofstream(dir / "g.toml") << "[fem]\ngrid_line_bending = true\ndiagonal_bending_N_m = 2e-8\n";
+  std::ofstream(dir / "m.toml") << "[fem]\nmesh_file = \"m.vtu\"\ngrid_line_bending = true\n";
+  const Scene s = load_scene((dir / "g.toml").string());
+  EXPECT_TRUE(s.fem.grid_line_bending);
+  EXPECT_EQ(*s.fem.diagonal_bending_N_m, 2e-8);
+  EXPECT_FALSE(FemSettings{}.grid_line_bending);  // off by default
+  try {
+    load_scene((dir / "m.toml").string());
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key, "fem.grid_line_bending");
+    EXPECT_NE(e.expected.find("grid mesh only"), std::string::npos);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(SceneFiles, FemPathsResolveAgainstTheSceneDirectory) {
   const fs::path dir = fs::path(::testing::TempDir()) / "scene_fem_paths";
   fs::create_directories(dir / "meshes");

@@ -20,16 +20,26 @@ Mat3 cross_matrix(const Vec3& a) {
 
 void HingeBendingTerm::add(const std::array<int, 12>& stencil, const Vec2& edge_uv, double area_sum, double theta0) {
   stencils_.push_back(stencil);
-  coeff_.push_back(edge_stiffness(edge_uv) * edge_uv.squaredNorm() / area_sum);
-  const Vec2 d = edge_uv.normalized();
-  warp_share_.push_back(d.y() * d.y() * edge_uv.squaredNorm() / area_sum);
-  weft_share_.push_back(d.x() * d.x() * edge_uv.squaredNorm() / area_sum);
+  const double scale = edge_uv.squaredNorm() / area_sum;
+  coeff_.push_back(edge_stiffness(edge_uv) * scale);
+  std::array<double, 3> s = stiffness_shares(edge_uv.normalized());
+  for (double& x : s) x *= scale;
+  shares_.push_back(s);
   theta0_.push_back(theta0);
+}
+
+std::array<double, 3> HingeBendingTerm::stiffness_shares(const Vec2& d) const {
+  const double uu = d.x() * d.x(), vv = d.y() * d.y();
+  if (k_diag_ <= 0.0) return {vv, uu, 0.0};
+  const double cross = 4 * uu * vv;  // 1 at 45°, 0 along u and v
+  return {vv - 0.5 * cross, uu - 0.5 * cross, cross};
 }
 
 double HingeBendingTerm::edge_stiffness(const Vec2& edge_uv) const {
   const Vec2 d = edge_uv.normalized();
-  return k_warp_ * d.y() * d.y() + k_weft_ * d.x() * d.x();
+  if (k_diag_ <= 0.0) return k_warp_ * d.y() * d.y() + k_weft_ * d.x() * d.x();
+  const std::array<double, 3> s = stiffness_shares(d);
+  return k_warp_ * s[0] + k_weft_ * s[1] + k_diag_ * s[2];
 }
 
 double HingeBendingTerm::dihedral_angle(const double* q) {
@@ -92,15 +102,18 @@ void HingeBendingTerm::evaluate(int el, const double* q, const double*, const El
   MatMap(out.dfdq) = -c * (grad * grad.transpose() + d * 0.5 * (H + H.transpose()));
 }
 
-std::vector<std::string> HingeBendingTerm::parameter_keys() const { return {kFemWarpBending, kFemWeftBending}; }
+std::vector<std::string> HingeBendingTerm::parameter_keys() const {
+  if (k_diag_ > 0.0) return {kFemWarpBending, kFemWeftBending, kFemDiagonalBending};
+  return {kFemWarpBending, kFemWeftBending};
+}
 
 void HingeBendingTerm::parameter_derivative(int el, int k, const double* q, const double*, double* dfdp) const {
-  // f = −coeff·(θ − θ₀)∇θ with coeff linear in k_warp and k_weft: evaluate at unit coefficient and scale.
+  // f = −coeff·(θ − θ₀)∇θ with coeff linear in each stiffness: evaluate and scale by ∂coeff/∂k / coeff.
   double f[12] = {};
   const double c = coeff_[el];
   if (c == 0.0) return;
   evaluate(el, q, nullptr, ElementOutput{f});
-  const double share = (k == 0 ? warp_share_[el] : weft_share_[el]) / c;
+  const double share = shares_[el][k] / c;
   for (int a = 0; a < 12; ++a) dfdp[a] += share * f[a];
 }
 

@@ -8,6 +8,10 @@
 //   k_e = k_warp·d_v² + k_weft·d_u²,
 // so an edge along v (crossed by the warp yarns) bends with the warp stiffness,
 // an edge along u with the weft stiffness, and a 45° diagonal with the mean.
+// With the optional diagonal stiffness k_diag > 0 (docs/models.md §6.5.1) the
+// 45° edges bend with k_diag instead:
+//   k_e = k_warp·d_v² + k_weft·d_u² + (k_diag − ½(k_warp + k_weft))·4d_u²d_v²,
+// still linear in each stiffness, equal to the above on edges along u and v.
 // k in N·m (bending stiffness per unit width). Normalisation: on the grid mesh
 // (right triangles, diagonal (i,j)-(i+1,j+1)), a cylinder of curvature κ about
 // the v axis bends only the edges along v, each by θ = κL, so V per area is
@@ -23,6 +27,7 @@
 // is the exact derivative of these expressions (product rule, carried as 3×12
 // Jacobians of every intermediate vector).
 #pragma once
+#include <array>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -33,14 +38,16 @@ namespace wl {
 
 class HingeBendingTerm : public StencilTerm<12> {
  public:
-  HingeBendingTerm(double k_warp_N_m, double k_weft_N_m) : k_warp_(k_warp_N_m), k_weft_(k_weft_N_m) {}
+  // k_diag_N_m ≤ 0: no diagonal stiffness of its own (the 45° edges take the mean).
+  HingeBendingTerm(double k_warp_N_m, double k_weft_N_m, double k_diag_N_m = 0.0)
+      : k_warp_(k_warp_N_m), k_weft_(k_weft_N_m), k_diag_(k_diag_N_m) {}
   std::string name() const override { return "fem-bending"; }
   std::unique_ptr<Term> clone() const override { return std::make_unique<HingeBendingTerm>(*this); }
   // edge_uv = rest UV of x1 − rest UV of x0; area_sum = Ā₁ + Ā₂ (rest).
   void add(const std::array<int, 12>& stencil, const Vec2& edge_uv, double area_sum, double theta0 = 0.0);
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
-  // k_warp, k_weft: V is linear in each through k_e.
+  // k_warp, k_weft (and k_diag when set): V is linear in each through k_e.
   std::vector<std::string> parameter_keys() const override;
   void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
 
@@ -50,9 +57,12 @@ class HingeBendingTerm : public StencilTerm<12> {
   static double dihedral_angle(const double* q);
 
  private:
-  double k_warp_, k_weft_;
-  std::vector<double> coeff_;                    // k_e ‖ē‖²/(Ā₁+Ā₂)
-  std::vector<double> warp_share_, weft_share_;  // d_v², d_u² times ‖ē‖²/(Ā₁+Ā₂)
+  // ∂k_e/∂k for k = warp, weft, diagonal at edge direction d (unit).
+  std::array<double, 3> stiffness_shares(const Vec2& d) const;
+
+  double k_warp_, k_weft_, k_diag_;
+  std::vector<double> coeff_;                  // k_e ‖ē‖²/(Ā₁+Ā₂)
+  std::vector<std::array<double, 3>> shares_;  // ∂coeff/∂(k_warp, k_weft, k_diag)
   std::vector<double> theta0_;
 };
 
