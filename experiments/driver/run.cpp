@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "experiments/driver/interrupt.h"
@@ -42,14 +43,16 @@ class Progress {
 };
 
 // The files a run writes (and a rerun into the same folder replaces), with
-// their temporary names: run.pvd, frames/run_NNNNN.vtu, metrics.csv(.part),
-// summary.json.
+// their temporary names: run.pvd, frames/run_NNNNN.vtu, with obstacles
+// obstacles.pvd and frames/obstacles_NNNNN.vtu, metrics.csv(.part), summary.json.
 bool written_by_a_run(const std::filesystem::path& rel) {
   const std::string name = rel.filename().string();
   const std::string base = name.substr(0, name.find(".tmp-"));
-  if (rel.parent_path() == "frames") return base.starts_with("run_") && base.ends_with(".vtu");
+  if (rel.parent_path() == "frames")
+    return (base.starts_with("run_") || base.starts_with("obstacles_")) && base.ends_with(".vtu");
   if (!rel.parent_path().empty()) return false;
-  return base == "run.pvd" || base == "metrics.csv" || base == "metrics.csv.part" || base == "summary.json";
+  return base == "run.pvd" || base == "obstacles.pvd" || base == "metrics.csv" || base == "metrics.csv.part" ||
+         base == "summary.json";
 }
 
 // Thrown from the step callback to end the run after the step a signal arrived in.
@@ -92,6 +95,9 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
 
   RunFolder folder(options.out_dir, written_by_a_run);
   PvdSeries series(options.out_dir, "run");
+  // The rigid obstacles, a second series beside the cloth's (docs/models.md §3.11.5).
+  std::optional<PvdSeries> obstacle_series;
+  if (model->obstacle_frame(0.0).points.rows() > 0) obstacle_series.emplace(options.out_dir, "obstacles");
   MetricsCsv metrics(options.out_dir / "metrics.csv",
                      {"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters", "step_wall_s"});
   if (options.progress)
@@ -112,6 +118,7 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   auto add_frame = [&](Frame f) {
     keep_frame(f);
     series.add(f);
+    if (obstacle_series) obstacle_series->add(model->obstacle_frame(f.time));
   };
   integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
   Evaluation scratch;
