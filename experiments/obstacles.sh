@@ -4,9 +4,11 @@
 # (floor_table.toml), each at yarn level and as a continuum; then the cost of
 # contact: the sphere scene against the same scene with its obstacle removed,
 # both models, run back to back in this one invocation, median step wall time
-# of each and their ratio. Results under results/obstacles/: one run folder per
-# scene and model (frames with contact_force, obstacles.pvd, metrics.csv,
-# summary.json) and cost.txt. WL_DURATION replaces the simulated time (s).
+# of each and their ratio; and on the sphere, the closest any node came to it
+# over the frames and the vertical contact force on the cloth at the end.
+# Results under results/obstacles/: one run folder per scene and model (frames
+# with contact_force, obstacles.pvd, metrics.csv, summary.json) and cost.txt.
+# WL_DURATION replaces the simulated time (s).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=results/obstacles
@@ -34,10 +36,20 @@ for model in yarn fem; do
     --out "$out/sphere_free_$model"
 done
 "$python" - "$out" <<'PY' | tee "$out/cost.txt"
-import statistics, sys
+import statistics, sys, tomllib
+import numpy as np
 sys.path.insert(0, "experiments")
 import weavelab_io as io
 out = sys.argv[1]
+with open("experiments/scenes/sphere_drape.toml", "rb") as f:
+    sphere = tomllib.load(f)["obstacles"][0]
+center, radius = np.array(sphere["center_m"]), sphere["radius_m"]
+print("model  closest node to the sphere over the frames [m]  contact force z at the end [N]")
+for model in ("yarn", "fem"):
+    frames = io.read_frames(f"{out}/sphere_drape_{model}")
+    closest = min((np.linalg.norm(m.points - center, axis=1) - radius).min() for _, m in frames)
+    force = frames[-1][1].point_data["contact_force"][:, 2].sum()
+    print(f"{model:5s}  {closest:.3e}  {force:.4e}")
 print("model  median step with sphere [ms]  without [ms]  ratio  steps with/without  rejected with")
 for model in ("yarn", "fem"):
     runs = {}
