@@ -15,6 +15,7 @@
 #include "experiments/output/metrics_csv.h"
 #include "experiments/output/pvd_series.h"
 #include "experiments/output/run_folder.h"
+#include "experiments/output/self_intersection.h"
 #include "models/model_factory.h"
 
 namespace wl {
@@ -44,7 +45,8 @@ class Progress {
 
 // The files a run writes (and a rerun into the same folder replaces), with
 // their temporary names: run.pvd, frames/run_NNNNN.vtu, with obstacles
-// obstacles.pvd and frames/obstacles_NNNNN.vtu, metrics.csv(.part), summary.json.
+// obstacles.pvd, frames/obstacles_NNNNN.vtu and self_intersections.csv(.part),
+// metrics.csv(.part), summary.json.
 bool written_by_a_run(const std::filesystem::path& rel) {
   const std::string name = rel.filename().string();
   const std::string base = name.substr(0, name.find(".tmp-"));
@@ -52,7 +54,7 @@ bool written_by_a_run(const std::filesystem::path& rel) {
     return (base.starts_with("run_") || base.starts_with("obstacles_")) && base.ends_with(".vtu");
   if (!rel.parent_path().empty()) return false;
   return base == "run.pvd" || base == "obstacles.pvd" || base == "metrics.csv" || base == "metrics.csv.part" ||
-         base == "summary.json";
+         base == "self_intersections.csv" || base == "self_intersections.csv.part" || base == "summary.json";
 }
 
 // Thrown from the step callback to end the run after the step a signal arrived in.
@@ -96,8 +98,14 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   RunFolder folder(options.out_dir, written_by_a_run);
   PvdSeries series(options.out_dir, "run");
   // The rigid obstacles, a second series beside the cloth's (docs/models.md §3.11.5).
+  // With them, the cloth's self-intersecting triangle pairs per frame (CGAL, docs/models.md §3.11.8).
   std::optional<PvdSeries> obstacle_series;
-  if (model->obstacle_frame(0.0).points.rows() > 0) obstacle_series.emplace(options.out_dir, "obstacles");
+  std::optional<MetricsCsv> intersections;
+  if (model->obstacle_frame(0.0).points.rows() > 0) {
+    obstacle_series.emplace(options.out_dir, "obstacles");
+    intersections.emplace(options.out_dir / "self_intersections.csv",
+                          std::vector<std::string>{"time_s", "intersecting_triangle_pairs"});
+  }
   MetricsCsv metrics(options.out_dir / "metrics.csv",
                      {"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters", "step_wall_s"});
   if (options.progress)
@@ -119,6 +127,7 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
     keep_frame(f);
     series.add(f);
     if (obstacle_series) obstacle_series->add(model->obstacle_frame(f.time));
+    if (intersections) intersections->row({f.time, double(count_self_intersections(f))});
   };
   integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
   Evaluation scratch;
@@ -164,6 +173,7 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   }
   progress.update(integrator->t(), integrator->stats().steps, true);
   metrics.commit();
+  if (intersections) intersections->commit();
   rep.stats = integrator->stats();
   rep.end_time = integrator->t();
   rep.accuracy = std::move(accuracy);
