@@ -83,7 +83,7 @@ def main():
         print(f"t = {t:.3f} s  drape coefficient {rows[-1][1]:.3f}  folds {rows[-1][2]}")
     if a.out:
         with open(a.out, "w", newline="") as f:
-            w = csv.writer(f)
+            w = csv.writer(f, lineterminator="\n")
             w.writerow(["time_s", "drape_coefficient", "folds"])
             w.writerows(rows)
 
