@@ -98,7 +98,7 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   RunFolder folder(options.out_dir, written_by_a_run);
   PvdSeries series(options.out_dir, "run");
   // The rigid obstacles, a second series beside the cloth's (docs/models.md §3.11.5).
-  // With them, the cloth's self-intersecting triangle pairs per frame (CGAL, docs/models.md §3.11.8).
+  // With them, the cloth's self-intersecting triangle pairs per frame (CGAL, docs/models.md §3.11.7).
   std::optional<PvdSeries> obstacle_series;
   std::optional<MetricsCsv> intersections;
   if (model->obstacle_frame(0.0).points.rows() > 0) {

@@ -1,4 +1,4 @@
-// Cloth–cloth intersections of an output frame (docs/models.md §3.11.8): the
+// Cloth–cloth intersections of an output frame (docs/models.md §3.11.7): the
 // number of pairs of the cloth's surface triangles (triangle cells, quads split
 // along a diagonal) that intersect, other than neighbours meeting at their
 // shared vertex or edge, by CGAL's self-intersection test
