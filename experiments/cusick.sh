@@ -6,6 +6,7 @@
 # to back in this invocation, median step wall time of each and their ratio.
 # WL_DURATION (default 0.05 s) is the simulated time: the drape is still
 # falling then; it settles only after seconds of simulated time.
+# WL_LINEAR_SOLVER (e.g. umfpack) sets the step matrix solver of every run.
 # Results under results/cusick/: the runs, drape_<model>.csv and cost.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,6 +14,8 @@ scene=experiments/scenes/cusick_drape_65.toml
 out=results/cusick
 python=/usr/bin/python3
 duration=${WL_DURATION:-0.05}
+solver=()
+if [ -n "${WL_LINEAR_SOLVER:-}" ]; then solver=(--linear-solver "$WL_LINEAR_SOLVER"); fi
 tools/setup.sh
 mkdir -p "$out"
 "$python" - <<'PY' >"$out/free.toml"
@@ -25,7 +28,7 @@ for model in yarn fem; do
     s=$scene
     if [ "$run" = free ]; then s=$out/free.toml; fi
     echo "== $run, $model model, $duration s" >&2
-    build/weavelab run "$s" --model "$model" --duration "$duration" --quiet --out "$out/${run}_$model"
+    build/weavelab run "$s" --model "$model" --duration "$duration" "${solver[@]}" --quiet --out "$out/${run}_$model"
   done
   "$python" experiments/drape_measure.py "$out/drape_$model" "$scene" --out "$out/drape_$model.csv" | tail -1
 done
