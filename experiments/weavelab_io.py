@@ -103,14 +103,15 @@ def step_wall_times(metrics, run="run"):
 
 
 def find_pvd(run, name=None):
-    """The run's .pvd: <name>.pvd, or the only .pvd in the folder."""
+    """The run's .pvd: <name>.pvd, or the only .pvd in the folder besides the
+    obstacles' series (obstacles.pvd, docs/models.md §3.11.5)."""
     run = run_dir(run)
     if name is not None:
         path = os.path.join(run, name if name.endswith(".pvd") else name + ".pvd")
         if not os.path.exists(path):
             raise RunError(f"'{path}' is missing")
         return path
-    found = sorted(f for f in os.listdir(run) if f.endswith(".pvd"))
+    found = sorted(f for f in os.listdir(run) if f.endswith(".pvd") and f != "obstacles.pvd")
     if not found:
         raise RunError(f"run folder '{run}' holds no .pvd frame series")
     if len(found) > 1:

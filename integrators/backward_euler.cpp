@@ -77,9 +77,11 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
       return {Outcome::diverged, "Newton matrix: " + solver_->failure(), FailureCause::newton};
     ++stats_.linear_solves;
     ++stats_.nonlinear_iters;
-    // Backtracking line search on ‖G‖.
+    // Backtracking line search on ‖G‖, from the admissible fraction of the
+    // update (docs/design.md §3.6; 1 without admissible states).
     const double gn = g.norm();
-    double alpha = 1.0;
+    const double reach = admissible_reach(t_ + h, q0 + h * v, t_ + h, q0 + h * (v + dv));
+    double alpha = reach;
     Vec v_try, g_try;
     for (int ls = 0; ls < 10; ++ls) {
       v_try = v + alpha * dv;
@@ -95,7 +97,8 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
     *iters = it;
     const double vscale = 1.0 + v.lpNorm<Eigen::Infinity>();
     if (!g.allFinite()) return {Outcome::nan, "NaN in Newton residual", FailureCause::newton};
-    if (alpha * dv.lpNorm<Eigen::Infinity>() <= opt_.newton_tol * vscale || g.norm() <= opt_.newton_tol * g0) {
+    const bool small_update = reach == 1.0 && alpha * dv.lpNorm<Eigen::Infinity>() <= opt_.newton_tol * vscale;
+    if (small_update || g.norm() <= opt_.newton_tol * g0) {
       v_ = v;
       zero_fixed(v_, fixed_);
       q_ = q0 + h * v_;

@@ -46,6 +46,10 @@ void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, con
   q_ = q0;
   v_ = v0;
   fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
+  refusal_.clear();
+  if (model.constrains_steps() && !capabilities().admissible_steps)
+    refusal_ = "integrator '" + name() + "' is not offered for a model with admissible states (rigid obstacles): " +
+               "its library steps cannot be shortened to keep nodes outside (docs/design.md §3.6)";
   for (int i : fixed_) v_[i] = 0.0;
   stats_ = {};
   if (!sensitivity_keys_.empty()) {
@@ -62,6 +66,7 @@ void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, con
 }
 
 StepResult Integrator::advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step) {
+  if (!refusal_.empty()) return {Outcome::not_offered, refusal_};
   while (t_out - t_ > 1e-9 * opt_.dt) {
     if (stats_.steps >= opt_.max_steps) return {Outcome::max_steps, "step limit reached"};
     double h = std::min(opt_.dt, t_out - t_);
@@ -73,7 +78,16 @@ StepResult Integrator::advance_fixed_steps(double t_out, const std::function<Ste
   return {};
 }
 
+double Integrator::admissible_reach(double t0, const Vec& q0, double t1, const Vec& q1) const {
+  return model_->constrains_steps() ? model_->admissible_fraction(t0, q0, t1, q1) : 1.0;
+}
+
 StepResult Integrator::fixed_step(double h, const std::function<StepResult(double, int&)>& move) {
+  // A model with admissible states (docs/design.md §3.6): a step whose move
+  // leaves them, or whose Newton iteration fails, is retaken as two halves.
+  const bool constrained = model_->constrains_steps();
+  const Vec q0 = constrained ? q_ : Vec(), v0 = constrained ? v_ : Vec();
+  const Eigen::MatrixXd sq = constrained ? dq_dp_ : Eigen::MatrixXd(), sv = constrained ? dv_dp_ : Eigen::MatrixXd();
   int iters = 0;
   double wall = 0.0;
   StepResult r;
@@ -82,8 +96,20 @@ StepResult Integrator::fixed_step(double h, const std::function<StepResult(doubl
     r = move(h, iters);
     wall = clock.elapsed_wall();
   }
-  if (r.outcome != Outcome::ok) return r;
-  return finish_step(t_ + h, h, iters, wall);
+  const bool retake = constrained && ((r.outcome == Outcome::ok && admissible_reach(t_, q0, t_ + h, q_) < 1.0) ||
+                                      r.cause == FailureCause::newton);
+  if (!retake) return r.outcome != Outcome::ok ? r : finish_step(t_ + h, h, iters, wall);
+  q_ = q0;
+  v_ = v0;
+  dq_dp_ = sq;
+  dv_dp_ = sv;
+  ++stats_.rejected_steps;
+  if (0.5 * h < opt_.min_step)
+    return {Outcome::step_too_small, "step " + std::to_string(0.5 * h) + " s below the minimum " +
+                                         std::to_string(opt_.min_step) + " s while keeping nodes outside obstacles" +
+                                         (r.message.empty() ? "" : " (last failure: " + r.message + ")")};
+  if (StepResult first = fixed_step(0.5 * h, move); first.outcome != Outcome::ok) return first;
+  return fixed_step(0.5 * h, move);
 }
 
 StepResult Integrator::finish_step(double t_new, double h, long nonlinear_iters, double wall_s) {
@@ -97,6 +123,7 @@ StepResult Integrator::finish_step(double t_new, double h, long nonlinear_iters,
 }
 
 StepResult Integrator::advance_library_steps(double t_out, IntegratorStats& timing, const LibraryStepper& library) {
+  if (!refusal_.empty()) return {Outcome::not_offered, refusal_};
   const int n = model_->num_dofs();
   StepResult result;
   {

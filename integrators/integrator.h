@@ -102,6 +102,11 @@ struct IntegratorCapabilities {
   // estimated by halving every recorded step (experiments/driver/time_error.h).
   bool replays_steps = false;
   EnergyBehaviour energy = EnergyBehaviour::dissipative;
+  // Honours a model's admissible states (Model::constrains_steps, docs/design.md
+  // §3.6): no accepted step leaves them (a step that would is retaken shorter)
+  // and Newton iterates stay within the admissible fraction. A method without
+  // it refuses such a model (Outcome::not_offered).
+  bool admissible_steps = false;
 };
 
 class Integrator {
@@ -161,6 +166,9 @@ class Integrator {
   SparseSolver::Options step_solver_options() const;
   // Copies a step matrix solver's statistics into stats_.
   void record_solver(const SparseSolver& solver);
+  // The model's admissible fraction of the move (t0, q0) → (t1, q1); 1 for a
+  // model without admissible states (docs/design.md §3.6).
+  double admissible_reach(double t0, const Vec& q0, double t1, const Vec& q1) const;
   // The free check_state below, preceded by the model's own rule for states it
   // cannot represent (Outcome::invalid_state with the model's message).
   StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) const;
@@ -170,6 +178,7 @@ class Integrator {
   double t_ = 0.0;
   Vec q_, v_;
   std::vector<int> fixed_;  // pinned DoFs (model.fixed_dofs())
+  std::string refusal_;     // why this method does not take the bound model (not_offered), or empty
   IntegratorStats stats_;
   std::vector<std::string> sensitivity_keys_;
   Eigen::MatrixXd dq_dp_, dv_dp_;

@@ -197,7 +197,12 @@ StepResult Sdirk2::adaptive_step(double t_out) {
                                              (result.message.empty() ? "" : " (last failure: " + result.message + ")")};
       Attempt a = attempt(h);
       iters += a.iters;
-      if (a.result.outcome == Outcome::ok && a.error <= 1.0) {
+      // A step that would take a node out of the admissible states is rejected
+      // and retaken shorter (docs/design.md §3.6).
+      const bool passed = a.result.outcome == Outcome::ok && a.error <= 1.0;
+      const double reach = passed ? admissible_reach(t_, q_, t_ + h, q_new_) : 1.0;
+      if (reach < 1.0) a.result = {Outcome::invalid_state, "a node would enter an obstacle"};
+      if (passed && reach == 1.0) {
         result = accept(h);
         if (result.outcome != Outcome::ok) return result;
         const double proposal = h * step_factor(a.error, rejected);
@@ -207,7 +212,9 @@ StepResult Sdirk2::adaptive_step(double t_out) {
       ++stats_.rejected_steps;
       rejected = true;
       result = a.result;
-      h_next_ = a.result.outcome == Outcome::ok ? h * step_factor(a.error, true) : 0.25 * h;
+      h_next_ = reach < 1.0                       ? h * std::clamp(0.9 * reach, 0.1, 0.5)
+                : a.result.outcome == Outcome::ok ? h * step_factor(a.error, true)
+                                                  : 0.25 * h;
     }
     wall = clock.elapsed_wall();
   }

@@ -35,7 +35,8 @@ class Sdirk2 : public Integrator {
             .state_dependent_mass = true,
             .sensitivities = true,
             .replays_steps = true,
-            .energy = EnergyBehaviour::dissipative};
+            .energy = EnergyBehaviour::dissipative,
+            .admissible_steps = true};
   }
   void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) override;
   StepResult advance_to(double t_out) override;

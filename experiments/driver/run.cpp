@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "experiments/driver/interrupt.h"
@@ -15,6 +16,7 @@
 #include "experiments/output/metrics_csv.h"
 #include "experiments/output/pvd_series.h"
 #include "experiments/output/run_folder.h"
+#include "experiments/output/self_intersection.h"
 #include "models/model_factory.h"
 
 namespace wl {
@@ -43,14 +45,17 @@ class Progress {
 };
 
 // The files a run writes (and a rerun into the same folder replaces), with
-// their temporary names: run.pvd, frames/run_NNNNN.vtu, metrics.csv(.part),
-// summary.json.
+// their temporary names: run.pvd, frames/run_NNNNN.vtu, with obstacles
+// obstacles.pvd, frames/obstacles_NNNNN.vtu and self_intersections.csv(.part),
+// metrics.csv(.part), summary.json.
 bool written_by_a_run(const std::filesystem::path& rel) {
   const std::string name = rel.filename().string();
   const std::string base = name.substr(0, name.find(".tmp-"));
-  if (rel.parent_path() == "frames") return base.starts_with("run_") && base.ends_with(".vtu");
+  if (rel.parent_path() == "frames")
+    return (base.starts_with("run_") || base.starts_with("obstacles_")) && base.ends_with(".vtu");
   if (!rel.parent_path().empty()) return false;
-  return base == "run.pvd" || base == "metrics.csv" || base == "metrics.csv.part" || base == "summary.json";
+  return base == "run.pvd" || base == "obstacles.pvd" || base == "metrics.csv" || base == "metrics.csv.part" ||
+         base == "self_intersections.csv" || base == "self_intersections.csv.part" || base == "summary.json";
 }
 
 // Thrown from the step callback to end the run after the step a signal arrived in.
@@ -102,6 +107,15 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
                     std::vector<std::string>{"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters",
                                              "step_wall_s"});
   }
+  // The rigid obstacles, a second series beside the cloth's (docs/models.md §3.11.5).
+  // With them, the cloth's self-intersecting triangle pairs per frame (CGAL, docs/models.md §3.11.7).
+  std::optional<PvdSeries> obstacle_series;
+  std::optional<MetricsCsv> intersections;
+  if (writes && model->obstacle_frame(0.0).points.rows() > 0) {
+    obstacle_series.emplace(options.out_dir, "obstacles");
+    intersections.emplace(options.out_dir / "self_intersections.csv",
+                          std::vector<std::string>{"time_s", "intersecting_triangle_pairs"});
+  }
   if (options.progress)
     std::fprintf(stderr, "weavelab: %s model, %d DoFs, %s, dt = %g s, %g s simulated -> %s\n", model->name().c_str(),
                  model->num_dofs(), scene.integrator.c_str(), scene.dt_s, scene.duration_s,
@@ -121,6 +135,8 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
     keep_frame(f);
     if (series) series->add(f);
     if (options.on_frame) options.on_frame(f);
+    if (obstacle_series) obstacle_series->add(model->obstacle_frame(f.time));
+    if (intersections) intersections->row({f.time, double(count_self_intersections(f))});
   };
   integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
   Evaluation scratch;
@@ -167,6 +183,7 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   }
   progress.update(integrator->t(), integrator->stats().steps, true);
   if (metrics) metrics->commit();
+  if (intersections) intersections->commit();
   rep.stats = integrator->stats();
   rep.end_time = integrator->t();
   rep.accuracy = std::move(accuracy);

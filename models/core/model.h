@@ -76,6 +76,26 @@ class Model {
   // state (Outcome::invalid_state). Only finite values are judged: NaN is check_state's.
   virtual std::string invalid_state(const Vec& q) const { return {}; }
 
+  // Admissible states (docs/design.md §3.6). A model whose states are
+  // restricted beyond invalid_state (nodes outside rigid obstacles) declares it
+  // here; an integrator that honours it (IntegratorCapabilities::admissible_steps)
+  // accepts no step whose move from (t0, q0) to (t1, q1) is not admissible in
+  // full, and keeps its Newton iterates inside the fraction, and an integrator
+  // that cannot refuses the model (Outcome::not_offered).
+  virtual bool constrains_steps() const { return false; }
+  // The largest fraction α ∈ [0, 1] of the straight move from q0 at t0 to q1 at
+  // t1 that stays admissible; 1 when all of it does.
+  virtual double admissible_fraction(double /*t0*/, const Vec& /*q0*/, double /*t1*/, const Vec& /*q1*/) const {
+    return 1.0;
+  }
+  // The rigid obstacles at time t as a surface for the writers (a second
+  // series beside the cloth's); empty points when the model has none.
+  virtual Frame obstacle_frame(double t) const {
+    Frame f;
+    f.time = t;
+    return f;
+  }
+
   // Largest node speed ‖ẋ‖ [m/s]; the default reads v as consecutive 3-vectors.
   virtual double max_node_speed(const Vec& v) const {
     double m = 0.0;

@@ -68,6 +68,13 @@ class Term {
   // Called after every accepted time step (history such as friction anchors).
   virtual void accept_step(const EvalContext&, double /*h*/) {}
 
+  // Admissible states (docs/design.md §3.6): a term that keeps nodes out of a
+  // region (obstacle contact) says so, and gives the largest fraction α ∈ [0, 1]
+  // of the straight move from the state `from` to `to` (positions linear in α,
+  // time from from.t to to.t) that stays admissible; 1: all of it.
+  virtual bool constrains_steps() const { return false; }
+  virtual double admissible_fraction(const EvalContext& /*from*/, const EvalContext& /*to*/) const { return 1.0; }
+
   // Element energy (conservative terms only), from local q.
   virtual double energy(int e, const double* q) const = 0;
   // Element force and requested Jacobians, from local q and v. Must be

@@ -93,6 +93,18 @@ void TermModel::accept_step(double t, const Vec& q, const Vec& v, double h) {
   for (auto& term : terms_) term->accept_step(ctx, h);
 }
 
+bool TermModel::constrains_steps() const {
+  return std::any_of(terms_.begin(), terms_.end(), [](const auto& t) { return t->constrains_steps(); });
+}
+
+double TermModel::admissible_fraction(double t0, const Vec& q0, double t1, const Vec& q1) const {
+  const EvalContext from{t0, &q0, nullptr, nullptr}, to{t1, &q1, nullptr, nullptr};
+  double alpha = 1.0;
+  for (const auto& term : terms_)
+    if (term->constrains_steps()) alpha = std::min(alpha, term->admissible_fraction(from, to));
+  return alpha;
+}
+
 std::vector<std::string> TermModel::parameter_keys() const {
   std::vector<std::string> keys;
   for (const auto& term : terms_)

@@ -20,6 +20,8 @@ class TermModel : public Model {
   void evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) override;
   double potential_energy(const Vec& q) const override;
   void accept_step(double t, const Vec& q, const Vec& v, double h) override;
+  bool constrains_steps() const override;
+  double admissible_fraction(double t0, const Vec& q0, double t1, const Vec& q1) const override;
   std::vector<std::string> parameter_keys() const override;
   std::vector<std::string> asymmetric_terms() const override;
   bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v,

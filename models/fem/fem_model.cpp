@@ -1,5 +1,6 @@
 #include "models/fem/fem_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -183,6 +184,14 @@ void FemModel::build() {
     const int v = vertex_of_node(p);
     for (int c = 0; c < 3; ++c) fixed_.push_back(3 * v + c);
   }
+  // Node–obstacle contact and friction at every vertex (docs/models.md §3.11), node spacing stride·L.
+  if (!scene_.obstacles.empty()) {
+    std::vector<int> node_x;
+    for (int i = 0; i < nv; ++i) node_x.push_back(3 * i);
+    const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
+    const ObstacleContactRule rule = obstacle_contact_rule(scene_, scene_.fem.stride * scene_.spacing_m, m);
+    obstacles_ = ObstacleContact(scene_, rule, node_x, q0_, terms_);
+  }
 
   rest_lu_.resize(nt);
   rest_lv_.resize(nt);
@@ -269,9 +278,14 @@ Frame FemModel::frame(double t, const Vec& q, const Vec& v) const {
     lv.values.push_back(ft.lv);
   }
   f.point_data = {std::move(vel), std::move(uv)};
+  if (!obstacles_.empty()) f.point_data.push_back(obstacles_.force_data(terms_, nv, t, q, v));
   f.cell_data = {std::move(tension), std::move(lu), std::move(lv)};
   (void)nt;
   return f;
+}
+
+Frame FemModel::obstacle_frame(double t) const {
+  return obstacles_.frame(t, std::max(scene_.warps, scene_.wefts) * scene_.spacing_m);
 }
 
 std::map<std::string, std::string> FemModel::describe() const {

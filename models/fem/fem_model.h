@@ -15,6 +15,7 @@
 #include <array>
 #include <map>
 
+#include "models/common/obstacle_contact.h"
 #include "models/core/term_model.h"
 #include "models/fem/fem_material.h"
 #include "models/fem/fem_mesh.h"
@@ -33,6 +34,7 @@ class FemModel : public TermModel {
   std::string name() const override { return "fem"; }
   bool mass_depends_on_q() const override { return false; }
   Frame frame(double t, const Vec& q, const Vec& v) const override;
+  Frame obstacle_frame(double t) const override;
   std::map<std::string, std::string> describe() const override;
 
   const FemMesh& mesh() const { return mesh_; }
@@ -61,6 +63,7 @@ class FemModel : public TermModel {
   std::vector<double> vertex_mass_;
   std::vector<double> rest_lu_, rest_lv_;  // per triangle, from the initial positions
   double max_uv_edge_ = 0.0;
+  ObstacleContact obstacles_;  // rigid obstacles of the scene (docs/models.md §3.11)
 };
 
 }  // namespace wl

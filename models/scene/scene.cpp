@@ -54,6 +54,14 @@
 //     border_strip, grid_line_bending   optional booleans (default false); grid_line_bending
 //       needs the grid mesh (no mesh_file) (absent = computed / taken from parameter_file)
 //
+//   [[obstacles]]  rigid obstacles (obstacle_reader.cpp, docs/models.md §3.11):
+//     shape = "plane" | "sphere" | "box" | "cylinder" | "disk"   (required)
+//     center_m = [x, y, z] (required); rotation_deg, velocity_m_per_s = [x, y, z];
+//     friction_coefficient ≥ 0; sizes > 0, required by shape: radius_m (sphere,
+//     cylinder, disk), half_extents_m = [a, b, c] (box), height_m (cylinder),
+//     thickness_m (disk)
+//   [obstacle_contact]  activation_distance_m, stiffness_N_per_m, friction_speed_m_per_s > 0
+//
 // ERRORS: SceneError with file, line (source line of the offending value; for a
 // missing key or a violated default, the line of its table), the dotted key
 // ("cloth.radius_m", "pins[1].node"), the value as written and what was
@@ -68,6 +76,7 @@
 #include <set>
 #include <sstream>
 
+#include "models/scene/obstacle_reader.h"
 #include "models/scene/toml_reader.h"
 
 namespace wl {
@@ -403,7 +412,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   TableReader top(src, root, "");
   // Unknown tables first: a misspelt table name is the likeliest error.
   top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "damping", "time",
-               "terms", "fem"});
+               "terms", "fem", "obstacles", "obstacle_contact"});
   top.finish();
   const auto yarn_defs = read_yarn_types(top);
   read_cloth(top, s, yarn_defs);
@@ -414,6 +423,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   read_loads(top, s);
   read_time(top, s);
   read_terms(top, s);
+  scene_detail::read_obstacles(top, s);
   return s;
 }
 

@@ -60,6 +60,32 @@ struct FemSettings {
   bool grid_line_bending = false;  // bending of the grid lines instead of hinges (terms/grid_line_bending.h)
 };
 
+// A rigid obstacle (docs/models.md §3.11.1). Its body frame is placed at
+// center_m and turned by rotation_deg (about the fixed x, then y, then z axis);
+// the shape is given in that frame: plane z ≤ 0; sphere; box |x|,|y|,|z| ≤ half
+// extents; cylinder and disk of radius_m about the local z axis, height_m high,
+// centred on z = 0. It moves at a constant velocity (0: static).
+struct ObstacleSpec {
+  enum class Shape { plane, sphere, box, cylinder, disk } shape = Shape::plane;
+  std::array<double, 3> center_m{0.0, 0.0, 0.0};
+  std::array<double, 3> rotation_deg{0.0, 0.0, 0.0};
+  std::array<double, 3> velocity_m_per_s{0.0, 0.0, 0.0};
+  std::array<double, 3> half_extents_m{0.0, 0.0, 0.0};  // box
+  double radius_m = 0.0;                                // sphere, cylinder, disk
+  double height_m = 0.0;                                // cylinder (height_m), disk (thickness_m)
+  double friction_coefficient = 0.0;                    // μ against the cloth
+  int line = 0;                                         // its [[obstacles]] entry in the scene file
+};
+
+// Node–obstacle contact (docs/models.md §3.11.2–§3.11.3); absent values follow
+// the stated rules (activation distance ½ cloth.spacing_m; stiffness from the
+// heaviest node's weight).
+struct ObstacleContactParams {
+  std::optional<double> activation_distance_m;  // d̂
+  std::optional<double> stiffness_N_per_m;      // κ
+  double friction_speed_m_per_s = 1e-3;         // ε_v of the smoothed Coulomb law
+};
+
 struct TermSwitches {
   bool stretch = true, bending = true, shear = true, parallel_contact = true, friction = true;
   bool gravity = true, wind = true, handles = true, inertia = true;
@@ -117,6 +143,8 @@ struct Scene {
 
   TermSwitches terms;
   FemSettings fem;
+  std::vector<ObstacleSpec> obstacles;
+  ObstacleContactParams obstacle_contact;
 
   int nodes_u() const { return wefts; }  // nodes along a warp = number of wefts
   int nodes_v() const { return warps; }

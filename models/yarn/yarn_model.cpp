@@ -55,6 +55,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   if (on.handles) add_handles();
   if (scene_.yarn_viscosity_Pa_s > 0.0) add_damping();
   add_pins();
+  add_obstacles();
   finalize();
 }
 
@@ -288,6 +289,22 @@ void YarnModel::add_pins() {
   }
 }
 
+// Node–obstacle contact and friction at every crossing (docs/models.md §3.11):
+// node spacing L, a node's mass at most (ρ_warp + ρ_weft)·L.
+void YarnModel::add_obstacles() {
+  if (scene_.obstacles.empty()) return;
+  std::vector<int> node_x;
+  for (int k = 0; k < grid_.num_nodes(); ++k) node_x.push_back(grid_.dofs(k).x);
+  double rho = 0.0;
+  for (const auto& [name, y] : scene_.yarn_types) rho = std::max(rho, y.density_kg_per_m);
+  const double L = scene_.spacing_m;
+  obstacles_ = ObstacleContact(scene_, obstacle_contact_rule(scene_, L, 2.0 * rho * L), node_x, q0_, terms_);
+}
+
+Frame YarnModel::obstacle_frame(double t) const {
+  return obstacles_.frame(t, std::max(grid_.nu(), grid_.nv()) * scene_.spacing_m);
+}
+
 double YarnModel::cross_section() const { return std::numbers::pi * scene_.radius_m * scene_.radius_m; }
 
 std::array<int, 8> YarnModel::segment_stencil(const Segment& s) const {
@@ -368,6 +385,7 @@ Frame YarnModel::frame(double t, const Vec& q, const Vec& v) const {
     }
   f.cells = {lines, quads};
   f.point_data = {vel, u, vv, fn, slide};
+  if (!obstacles_.empty()) f.point_data.push_back(obstacles_.force_data(terms_, n, t, q, v));
   f.cell_data = {tension};
   return f;
 }

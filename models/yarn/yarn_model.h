@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 
+#include "models/common/obstacle_contact.h"
 #include "models/core/term_model.h"
 #include "models/scene/scene.h"
 #include "models/yarn/contact_normals.h"
@@ -23,6 +24,7 @@ class YarnModel : public TermModel {
   // Sliding coordinates of neighbouring crossings that meet or cross (Δu ≤ 0 on
   // a segment, docs/models.md §2.2, §5.10), naming the yarn and the crossings.
   std::string invalid_state(const Vec& q) const override;
+  Frame obstacle_frame(double t) const override;
   std::map<std::string, std::string> describe() const override;
 
   const WovenGrid& grid() const { return grid_; }
@@ -61,6 +63,7 @@ class YarnModel : public TermModel {
   void add_handles();
   void add_damping();
   void add_pins();
+  void add_obstacles();
 
   std::array<int, 8> segment_stencil(const Segment& s) const;
   double cross_section() const;  // πR² [m²]
@@ -73,6 +76,7 @@ class YarnModel : public TermModel {
   std::optional<ContactNormals> normals_;           // only when a term needs F_n
   int friction_term_ = -1;                          // index of the friction term in terms_, −1 without friction
   std::vector<int> friction_node_, friction_axis_;  // per friction element: node id, 0 = u / 1 = v
+  ObstacleContact obstacles_;                       // rigid obstacles of the scene (docs/models.md §3.11)
 };
 
 }  // namespace wl

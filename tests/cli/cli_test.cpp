@@ -156,6 +156,19 @@ TEST_F(Cli, RunsAreBitwiseIdenticalAcrossThreadCounts) {
           << frame << " of setting " << k;
 }
 
+// Obstacles (docs/models.md §3.11): a bad shape, size or missing key, and a
+// node that starts inside an obstacle, are located exit-2 errors writing nothing.
+TEST_F(Cli, BadObstaclesAreLocatedExit2) {
+  const std::string cloth = "[cloth]\nwarps = 5\nwefts = 5\n[pose]\nkind = \"flat\"\n";
+  expect_rejected(cloth + "[[obstacles]]\nshape = \"torus\"\ncenter_m = [0, 0, -1]\n",
+                  {"bad.toml:7", "obstacles[0].shape", "\"cylinder\""});
+  expect_rejected(cloth + "[[obstacles]]\nshape = \"sphere\"\ncenter_m = [0, 0, -1]\nradius_m = -0.5\n",
+                  {"bad.toml:9", "obstacles[0].radius_m", "a number > 0"});
+  expect_rejected(cloth + "[[obstacles]]\nshape = \"plane\"\n", {"bad.toml:6", "obstacles[0].center_m"});
+  expect_rejected(cloth + "[[obstacles]]\nshape = \"sphere\"\ncenter_m = [0.002, 0.002, 0]\nradius_m = 0.0015\n",
+                  {"bad.toml:6", "obstacles[0]", "inside"});
+}
+
 // A state the model cannot represent is a named numerical outcome (exit 1) with
 // a complete record, not NaN or a runaway: without friction or parallel contact,
 // a strong pull along the yarns slides crossing (1, 1) past (2, 1) in one step.

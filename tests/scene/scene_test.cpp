@@ -329,5 +329,51 @@ TEST(SceneFiles, FemPathsResolveAgainstTheSceneDirectory) {
   fs::remove_all(dir);
 }
 
+// Obstacles (docs/models.md §3.11): every key read, sizes positive and
+// required by their shape, the shape known, the centre given.
+TEST(SceneParse, ObstaclesAndTheirContact) {
+  const Scene s = parse_scene(
+      "[[obstacles]]\nshape = \"plane\"\ncenter_m = [0, 0, -0.01]\nrotation_deg = [10, 0, 0]\n"
+      "friction_coefficient = 0.4\nvelocity_m_per_s = [0, 0, 0.1]\n"
+      "[[obstacles]]\nshape = \"box\"\ncenter_m = [1, 2, 3]\nhalf_extents_m = [0.1, 0.2, 0.3]\n"
+      "[[obstacles]]\nshape = \"disk\"\ncenter_m = [0, 0, 0]\nradius_m = 0.02\nthickness_m = 0.004\n"
+      "[obstacle_contact]\nactivation_distance_m = 0.0002\nstiffness_N_per_m = 3.5\nfriction_speed_m_per_s = 0.01\n",
+      "o.toml");
+  ASSERT_EQ(s.obstacles.size(), 3u);
+  EXPECT_EQ(s.obstacles[0].shape, ObstacleSpec::Shape::plane);
+  EXPECT_EQ(s.obstacles[0].rotation_deg[0], 10.0);
+  EXPECT_EQ(s.obstacles[0].friction_coefficient, 0.4);
+  EXPECT_EQ(s.obstacles[0].velocity_m_per_s[2], 0.1);
+  EXPECT_EQ(s.obstacles[0].line, 1);
+  EXPECT_EQ(s.obstacles[1].half_extents_m[2], 0.3);
+  EXPECT_EQ(s.obstacles[1].line, 7);
+  EXPECT_EQ(s.obstacles[2].height_m, 0.004);
+  EXPECT_EQ(*s.obstacle_contact.activation_distance_m, 0.0002);
+  EXPECT_EQ(*s.obstacle_contact.stiffness_N_per_m, 3.5);
+  EXPECT_EQ(s.obstacle_contact.friction_speed_m_per_s, 0.01);
+}
+
+TEST(SceneErrors, ObstacleShapeSizesAndRequiredKeys) {
+  expect_error("[[obstacles]]\nshape = \"cone\"\ncenter_m = [0, 0, 0]\n", 2, "obstacles[0].shape", "\"sphere\"");
+  expect_error("[[obstacles]]\ncenter_m = [0, 0, 0]\n", 1, "obstacles[0].shape", "\"plane\"");
+  expect_error("[[obstacles]]\nshape = \"plane\"\n", 1, "obstacles[0].center_m", "3 numbers");
+  expect_error("[[obstacles]]\nshape = \"sphere\"\ncenter_m = [0, 0, 0]\nradius_m = 0\n", 4, "obstacles[0].radius_m",
+               "a number > 0");
+  expect_error("[[obstacles]]\nshape = \"sphere\"\ncenter_m = [0, 0, 0]\n", 1, "obstacles[0].radius_m",
+               "required for shape = \"sphere\"");
+  expect_error("[[obstacles]]\nshape = \"cylinder\"\ncenter_m = [0, 0, 0]\nradius_m = 0.1\nheight_m = -1\n", 5,
+               "obstacles[0].height_m", "a number > 0");
+  expect_error("[[obstacles]]\nshape = \"disk\"\ncenter_m = [0, 0, 0]\nradius_m = 0.1\n", 1, "obstacles[0].thickness_m",
+               "required for shape = \"disk\"");
+  expect_error("[[obstacles]]\nshape = \"box\"\ncenter_m = [0, 0, 0]\nhalf_extents_m = [1, 0, 1]\n", 4,
+               "obstacles[0].half_extents_m", "3 numbers > 0");
+  expect_error("[[obstacles]]\nshape = \"plane\"\ncenter_m = [0, 0, 0]\nradius_m = 0.1\n", 4, "obstacles[0].radius_m",
+               "for shape = \"plane\"");
+  expect_error("[[obstacles]]\nshape = \"plane\"\ncenter_m = [0, 0, 0]\nfriction_coefficient = -0.1\n", 4,
+               "obstacles[0].friction_coefficient", "a number ≥ 0");
+  expect_error("[obstacle_contact]\nactivation_distance_m = 0\n", 2, "obstacle_contact.activation_distance_m",
+               "a number > 0");
+}
+
 }  // namespace
 }  // namespace wl

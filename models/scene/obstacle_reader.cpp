@@ -1,0 +1,67 @@
+#include "models/scene/obstacle_reader.h"
+
+#include <cmath>
+#include <string>
+
+namespace wl::scene_detail {
+namespace {
+
+auto positive = [](double x) { return x > 0.0; };
+
+// A required number > 0 (a size): missing and non-positive values are errors.
+void read_size(TableReader& t, const char* key, double& out, const std::string& shape) {
+  const std::string expected = "a number > 0 (m), required for shape = \"" + shape + "\"";
+  if (!t.read_number(key, out, expected, positive)) t.fail_missing(key, expected);
+}
+
+void read_one(TableReader& t, Scene& s) {
+  ObstacleSpec o;
+  o.line = t.line();
+  const std::vector<std::string> shapes{"plane", "sphere", "box", "cylinder", "disk"};
+  int shape = 0;
+  if (!t.read_choice("shape", shape, shapes))
+    t.fail_missing("shape", "one of \"plane\", \"sphere\", \"box\", \"cylinder\", \"disk\"");
+  o.shape = static_cast<ObstacleSpec::Shape>(shape);
+  const std::string vec = "an array of 3 numbers [x, y, z]";
+  if (!t.read_vec3("center_m", o.center_m, vec + " (m)")) t.fail_missing("center_m", vec + " (m)");
+  t.read_vec3("rotation_deg", o.rotation_deg, vec + " (degrees about the fixed x, y, z axes)");
+  t.read_vec3("velocity_m_per_s", o.velocity_m_per_s, vec + " (m/s)");
+  t.read_number("friction_coefficient", o.friction_coefficient, "a number ≥ 0", [](double x) { return x >= 0.0; });
+  const std::string name = shapes[shape];
+  switch (o.shape) {
+    case ObstacleSpec::Shape::plane: break;
+    case ObstacleSpec::Shape::sphere: read_size(t, "radius_m", o.radius_m, name); break;
+    case ObstacleSpec::Shape::box: {
+      const std::string expected = "an array of 3 numbers > 0 [a, b, c] (m), required for shape = \"box\"";
+      if (!t.read_vec3("half_extents_m", o.half_extents_m, expected)) t.fail_missing("half_extents_m", expected);
+      for (double h : o.half_extents_m)
+        if (!(h > 0.0)) t.fail_at(*t.table().get("half_extents_m"), "half_extents_m", expected);
+      break;
+    }
+    case ObstacleSpec::Shape::cylinder:
+      read_size(t, "radius_m", o.radius_m, name);
+      read_size(t, "height_m", o.height_m, name);
+      break;
+    case ObstacleSpec::Shape::disk:
+      read_size(t, "radius_m", o.radius_m, name);
+      read_size(t, "thickness_m", o.height_m, name);
+      break;
+  }
+  t.finish("(for shape = \"" + name + "\")");
+  s.obstacles.push_back(o);
+}
+
+}  // namespace
+
+void read_obstacles(TableReader& top, Scene& s) {
+  for (TableReader& t : top.table_array("obstacles")) read_one(t, s);
+  auto c = top.subtable("obstacle_contact");
+  if (!c) return;
+  ObstacleContactParams& p = s.obstacle_contact;
+  c->read_number("activation_distance_m", p.activation_distance_m, "a number > 0 (m)", positive);
+  c->read_number("stiffness_N_per_m", p.stiffness_N_per_m, "a number > 0 (N/m)", positive);
+  c->read_number("friction_speed_m_per_s", p.friction_speed_m_per_s, "a number > 0 (m/s)", positive);
+  c->finish();
+}
+
+}  // namespace wl::scene_detail
