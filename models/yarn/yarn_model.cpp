@@ -55,7 +55,14 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   if (on.handles) add_handles();
   if (scene_.yarn_viscosity_Pa_s > 0.0) add_damping();
   add_pins();
+  if (normals_ && scene.exact_contact_jacobian) {
+    normals_->compute(q0_);
+    normals_->compute_gradient(q0_);  // the structure of ∂F_n/∂q, the same at every state
+    chain_.emplace(terms_, *normals_);
+    extra_pattern_ = chain_->pattern_entries();
+  }
   finalize();
+  if (chain_) chain_->bind(pattern());
 }
 
 // Rest state: upright x = (iL, 0, h − jL) (cloth in the xz plane, wind along
@@ -298,7 +305,40 @@ std::array<int, 8> YarnModel::segment_stencil(const Segment& s) const {
 void YarnModel::prepare_auxiliary(double, const Vec& q, const Vec&, EvalContext& ctx) {
   if (!normals_) return;
   normals_->compute(q);
+  if (chain_) normals_->compute_gradient(q);
   ctx.normal_force = normals_->normal_force();
+}
+
+void YarnModel::after_stage(int stage, const Vec& q, const Vec& v, const AssemblyRequest& req, Evaluation& out) {
+  if (!chain_) return;
+  if (stage == 0) chain_->keep_stage0_rows(req, out);
+  else chain_->add_jacobians(*this, q, v, *normals_, req, out);
+}
+
+// ∂F_n/∂p from the parts of F_n proportional to each yarn's k_s (∝ Y) and k_b
+// (∝ B), docs/models.md §3.6.1, then chained into the readers of F_n and F_u.
+bool YarnModel::force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v,
+                                           Vec& dfdp) const {
+  bool any = TermModel::force_parameter_derivative(key, t, q, v, dfdp);
+  if (!chain_) return any;
+  auto per_unit = [&](const std::string& type, const char* field, double value) {
+    return value > 0.0 && yarn_type_key(type, field) == key ? 1.0 / value : 0.0;
+  };
+  auto cycled = [](const std::vector<std::string>& cycle, int k) { return cycle[k % cycle.size()]; };
+  const auto& parts = normals_->stiffness_parts();
+  std::vector<double> dfn_dp(grid_.num_nodes(), 0.0);
+  for (int j = 0; j < grid_.nv(); ++j)
+    for (int i = 0; i < grid_.nu(); ++i) {
+      const int id = grid_.node(i, j);
+      const std::string& warp = cycled(scene_.warp_yarn_types, j);
+      const std::string& weft = cycled(scene_.weft_yarn_types, i);
+      const YarnType &yw = yarn_type(warp), &yf = yarn_type(weft);
+      dfn_dp[id] = parts[id].warp_stretch * per_unit(warp, kStretchModulusField, yw.stretch_modulus_Pa) +
+                   parts[id].warp_bending * per_unit(warp, kBendingModulusField, yw.bending_modulus_Pa) +
+                   parts[id].weft_stretch * per_unit(weft, kStretchModulusField, yf.stretch_modulus_Pa) +
+                   parts[id].weft_bending * per_unit(weft, kBendingModulusField, yf.bending_modulus_Pa);
+    }
+  return chain_->add_parameter_derivative(*this, key, q, v, dfn_dp, dfdp) || any;
 }
 
 Vec3 YarnModel::position(const Vec& q, int i, int j) const { return q.segment<3>(grid_.dofs(grid_.node(i, j)).x); }

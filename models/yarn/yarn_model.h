@@ -7,6 +7,7 @@
 
 #include "models/core/term_model.h"
 #include "models/scene/scene.h"
+#include "models/yarn/contact_chain.h"
 #include "models/yarn/contact_normals.h"
 #include "models/yarn/woven_grid.h"
 
@@ -24,6 +25,11 @@ class YarnModel : public TermModel {
   // a segment, docs/models.md §2.2, §5.10), naming the yarn and the crossings.
   std::string invalid_state(const Vec& q) const override;
   std::map<std::string, std::string> describe() const override;
+  // With time.exact_contact_jacobian, ∂f/∂p includes what passes through F_n and
+  // F_u (docs/models.md §3.6.1, §9.1).
+  bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v,
+                                  Vec& dfdp) const override;
+  bool exact_contact_jacobian() const { return chain_.has_value(); }
 
   const WovenGrid& grid() const { return grid_; }
   // Position of node (i, j) and its current material coordinates in state q.
@@ -33,6 +39,8 @@ class YarnModel : public TermModel {
  protected:
   // The contact normals and F_n at q (docs/models.md §3.6), handed to the terms in ctx.
   void prepare_auxiliary(double t, const Vec& q, const Vec& v, EvalContext& ctx) override;
+  // The chain of ∂F_n/∂q and ∂F_u/∂q into the Jacobians (exact_contact_jacobian).
+  void after_stage(int stage, const Vec& q, const Vec& v, const AssemblyRequest& req, Evaluation& out) override;
 
  private:
   struct Segment {
@@ -71,6 +79,7 @@ class YarnModel : public TermModel {
   YarnConstants warp_, weft_;
   std::vector<Segment> segments_;
   std::optional<ContactNormals> normals_;           // only when a term needs F_n
+  std::optional<ContactChain> chain_;               // only with exact_contact_jacobian and F_n
   int friction_term_ = -1;                          // index of the friction term in terms_, −1 without friction
   std::vector<int> friction_node_, friction_axis_;  // per friction element: node id, 0 = u / 1 = v
 };

@@ -42,6 +42,7 @@ class GongFrictionTerm : public FrictionTerm {
   void accept_step(const EvalContext& ctx, double h) override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
   void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
+  void frozen_input_derivatives(int e, const double* q, const double* v, double* dfdFn, double* dfdFu) const override;
   // sigmoid(10⁴(|F_u| − μF_n)) at the last prepared inputs.
   std::vector<double> sliding_state() const override;
 
