@@ -31,9 +31,46 @@ ContactChain::ContactChain(const std::vector<std::unique_ptr<Term>>& terms, cons
     }
   for (NodeBlock& b : nodes_)
     if (!b.rows.empty()) b.cols.assign(grad[&b - nodes_.data()].dof.begin(), grad[&b - nodes_.data()].dof.end());
-  for (const TangentialReader& r : tangential_)
+  tangential_of_.resize(terms.size());
+  for (size_t k = 0; k < tangential_.size(); ++k) {
+    const TangentialReader& r = tangential_[k];
     if (std::find(stage0_rows.begin(), stage0_rows.end(), r.dof) != stage0_rows.end())
       throw std::logic_error("ContactChain: a stage-0 reader of F_n acts on a DoF whose F_u is read");
+    tangential_of_[r.term].resize(terms[r.term]->num_elements(), -1);
+    tangential_of_[r.term][r.element] = static_cast<int>(k);
+  }
+}
+
+int ContactChain::tangential_index(int t, int e) const {
+  if (t < 0 || t >= static_cast<int>(tangential_of_.size()) || e >= static_cast<int>(tangential_of_[t].size()))
+    return -1;
+  return tangential_of_[t][e];
+}
+
+double ContactChain::tangential_directional(int t, int e, const Vec& sq, const Vec& sv) const {
+  const int k = tangential_index(t, e);
+  if (k < 0 || !have_stage0_) return 0.0;
+  const TangentialReader& r = tangential_[k];
+  double sum = 0.0;
+  for (size_t i = 0; i < r.cols.size(); ++i)
+    sum += stage0_dfdq_[r.offset + i] * sq[r.cols[i]] + stage0_dfdv_[r.offset + i] * sv[r.cols[i]];
+  return sum;
+}
+
+double ContactChain::tangential_parameter_derivative(const TermModel& model, int t, int e, const std::string& key,
+                                                     const Vec& q, const Vec& v, const Vec& dfdp) const {
+  const int k = tangential_index(t, e);
+  if (k < 0) return 0.0;
+  const TangentialReader& r = tangential_[k];
+  const Term& term = *model.terms()[t];
+  const auto keys = term.parameter_keys();
+  const auto it = std::find(keys.begin(), keys.end(), key);
+  if (it == keys.end()) return dfdp[r.dof];
+  const int n = term.stencil_size();
+  std::vector<double> lq(n), lv(n), own(n, 0.0);
+  model.gather_local(term, e, q, v, lq.data(), lv.data());
+  term.parameter_derivative(e, static_cast<int>(it - keys.begin()), lq.data(), lv.data(), own.data());
+  return dfdp[r.dof] - own[0];
 }
 
 std::vector<std::pair<int, int>> ContactChain::pattern_entries() const {
@@ -79,6 +116,7 @@ void ContactChain::bind(const SparseMatrix& pattern) {
 }
 
 void ContactChain::keep_stage0_rows(const AssemblyRequest& req, const Evaluation& out) {
+  if (!req.dfdq && !req.dfdv) return;  // keeps the rows of the last evaluation with Jacobians
   have_stage0_ = false;
   if (req.filter == TermFilter::explicit_only || req.filter == TermFilter::mass_only) return;
   for (const TangentialReader& r : tangential_)
@@ -139,27 +177,14 @@ void ContactChain::add_jacobians(const TermModel& model, const Vec& q, const Vec
   }
 }
 
-bool ContactChain::add_parameter_derivative(const TermModel& model, const std::string& key, const Vec& q,
-                                            const Vec& v, const std::vector<double>& dfn_dp, Vec& dfdp) const {
+bool ContactChain::add_parameter_derivative(const TermModel& model, const std::string& key, const Vec& q, const Vec& v,
+                                            const std::vector<double>& dfn_dp, Vec& dfdp) const {
   const auto& terms = model.terms();
-  std::vector<double> lq, lv, dfn, dfu, own;
+  std::vector<double> lq, lv, dfn, dfu;
   // ∂F_u/∂p: the stage-0 part of ∂f/∂p on the DoF (the reader's own ∂F/∂p removed).
   std::vector<double> dfu_dp(tangential_.size(), 0.0);
-  for (size_t k = 0; k < tangential_.size(); ++k) {
-    const TangentialReader& r = tangential_[k];
-    const Term& term = *terms[r.term];
-    const auto keys = term.parameter_keys();
-    double self = 0.0;
-    const auto it = std::find(keys.begin(), keys.end(), key);
-    if (it != keys.end()) {
-      const int n = term.stencil_size();
-      lq.assign(n, 0.0), lv.assign(n, 0.0), own.assign(n, 0.0);
-      model.gather_local(term, r.element, q, v, lq.data(), lv.data());
-      term.parameter_derivative(r.element, static_cast<int>(it - keys.begin()), lq.data(), lv.data(), own.data());
-      self = own[0];
-    }
-    dfu_dp[k] = dfdp[r.dof] - self;
-  }
+  for (size_t k = 0; k < tangential_.size(); ++k)
+    dfu_dp[k] = tangential_parameter_derivative(model, tangential_[k].term, tangential_[k].element, key, q, v, dfdp);
   bool any = false;
   size_t next_tangential = 0;
   for (const Reader& r : readers_) {

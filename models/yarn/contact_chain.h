@@ -37,6 +37,13 @@ class ContactChain {
   // node (dfn_dp). Returns whether it added anything non-zero.
   bool add_parameter_derivative(const TermModel& model, const std::string& key, const Vec& q, const Vec& v,
                                 const std::vector<double>& dfn_dp, Vec& dfdp) const;
+  // ∂F_u/∂q·sq + ∂F_u/∂v·sv for the F_u that element e of term t reads, from
+  // the stage-0 rows of the last evaluation with Jacobians (0 when it reads none).
+  double tangential_directional(int t, int e, const Vec& sq, const Vec& sv) const;
+  // ∂F_u/∂p: the stage-0 part of dfdp (the terms' own ∂f/∂p for `key`) on the
+  // DoF whose F_u element e of term t reads.
+  double tangential_parameter_derivative(const TermModel& model, int t, int e, const std::string& key, const Vec& q,
+                                         const Vec& v, const Vec& dfdp) const;
 
  private:
   struct Reader {
@@ -53,8 +60,10 @@ class ContactChain {
     size_t offset = 0;             // into stage0_*_
   };
   std::vector<Reader> readers_;
-  std::vector<NodeBlock> nodes_;  // per node id
+  std::vector<NodeBlock> nodes_;             // per node id
+  int tangential_index(int t, int e) const;  // into tangential_, −1: element e of term t reads no F_u
   std::vector<TangentialReader> tangential_;
+  std::vector<std::vector<int>> tangential_of_;  // per term, per element: index into tangential_ or −1
   std::vector<double> stage0_dfdq_, stage0_dfdv_;
   bool have_stage0_ = false;
 };

@@ -77,7 +77,8 @@ TEST(ContactNormalsGradient, MatchesDifferencesOfTheNormalForce) {
   opt.rel_step = 1e-7;
   opt.rtol = 1e-6;
   opt.floor = 1e-12;
-  const test::FdReport r = test::check_jacobian_columns(fn_of, q, [&](int c) { return G.col(c).eval(); }, cols, opt);
+  const test::FdReport r = test::check_jacobian_columns(
+      fn_of, q, [&](int c) { return G.col(c).eval(); }, cols, opt);
   std::printf("[ F_n ] dF_n/dq relative error %.2e over %d columns\n", r.dfdq_error, g.num_dofs());
   EXPECT_TRUE(r.ok) << r.detail;
 }

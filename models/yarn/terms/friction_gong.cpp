@@ -64,6 +64,17 @@ void GongFrictionTerm::frozen_input_derivatives(int e, const double* q, const do
   dfdFu[0] += r.d_Fu;
 }
 
+// σ′ = 10⁴ σ(1 − σ): ∂σ/∂F_u = σ′ sign(F_u), ∂σ/∂F_n = −σ′μ, ∂σ/∂μ = −σ′F_n.
+GongFrictionTerm::AnchorRate GongFrictionTerm::anchor_rate(int e) const {
+  AnchorRate r;
+  r.sigma = slide_indicator(Fu_[e], Fn_[e]);
+  const double ds = kSlideSharpness * r.sigma * (1.0 - r.sigma);
+  r.d_Fu = Fu_[e] > 0.0 ? ds : (Fu_[e] < 0.0 ? -ds : 0.0);
+  r.d_Fn = -ds * mu_;
+  r.d_mu = -ds * Fn_[e];
+  return r;
+}
+
 std::vector<double> GongFrictionTerm::sliding_state() const {
   std::vector<double> s(num_elements());
   for (int e = 0; e < num_elements(); ++e) s[e] = slide_indicator(Fu_[e], Fn_[e]);
