@@ -96,6 +96,8 @@ class Simulator {
  public:
   Simulator(const Scene& scene, const std::vector<TargetFrame>& frames, const TrajectoryFitOptions& opt)
       : scene_(scene), frames_(frames), opt_(opt) {
+    // The sensitivities are exact only with F_n and F_u differentiated (docs/models.md §3.6.1).
+    scene_.exact_contact_jacobian = true;
     integrator_ = opt.integrator.empty() ? scene.integrator : opt.integrator;
     if (!make_integrator(integrator_)->offers_sensitivities())
       throw TrajectoryFitError("integrator '" + integrator_ +
@@ -144,7 +146,7 @@ class Simulator {
   int count() const { return count_; }
 
  private:
-  const Scene& scene_;
+  Scene scene_;  // a copy: the fit differentiates F_n and F_u in it
   const std::vector<TargetFrame>& frames_;
   const TrajectoryFitOptions& opt_;
   std::string integrator_;

@@ -38,9 +38,15 @@ std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colour
 
 }  // namespace
 
-Assembly::Assembly(int num_dofs, std::vector<Term*> terms) : num_dofs_(num_dofs) {
+Assembly::Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std::pair<int, int>>& extra)
+    : num_dofs_(num_dofs) {
   std::vector<Eigen::Triplet<double, int>> triplets;
   for (int i = 0; i < num_dofs; ++i) triplets.emplace_back(i, i, 0.0);
+  for (const auto& [r, c] : extra) {
+    if (r < 0 || c < 0 || r >= num_dofs || c >= num_dofs)
+      throw std::logic_error("assembly: extra pattern entry out of range");
+    triplets.emplace_back(r, c, 0.0);
+  }
   for (Term* t : terms) {
     for (int e = 0; e < t->num_elements(); ++e) {
       auto s = t->stencil(e);

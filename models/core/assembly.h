@@ -7,6 +7,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "models/core/term.h"
@@ -26,7 +27,9 @@ struct AssemblyRequest {
 
 class Assembly {
  public:
-  Assembly(int num_dofs, std::vector<Term*> terms);
+  // `extra`: (row, column) entries the pattern holds besides the terms' blocks
+  // (a model's couplings through its auxiliary quantities, docs/models.md §3.6.1).
+  Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std::pair<int, int>>& extra = {});
 
   int num_dofs() const { return num_dofs_; }
   // Pattern shared by mass, ∂f/∂q and ∂f/∂v: the union of all stencil blocks

@@ -123,6 +123,13 @@ class Model {
   // Adds ((∂M/∂q)·dq)·w at q into `out`; only models whose mass depends on q
   // (mass_depends_on_q()) add anything.
   virtual void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const {}
+  // Carries the derivative of the model's history (friction anchors) over an
+  // accepted step of size h ending at (q, v), called before accept_step with
+  // the sensitivities there, S_q = ∂q/∂p and S_v = ∂v/∂p (one column per key;
+  // docs/models.md §9.2). The default: the history does not depend on p.
+  virtual void accept_step_sensitivities(const std::vector<std::string>& /*keys*/, const Vec& /*q*/, const Vec& /*v*/,
+                                         const Eigen::MatrixXd& /*dq_dp*/, const Eigen::MatrixXd& /*dv_dp*/,
+                                         double /*h*/) {}
   // Short facts for `weavelab info` and the run summary (name -> value).
   virtual std::map<std::string, std::string> describe() const = 0;
 };

@@ -95,6 +95,16 @@ class Term {
   // into dm), for terms whose mass depends on q (docs/models.md §9.2).
   virtual void mass_directional_derivative(int /*e*/, const double* /*q*/, const double* /*dq*/, double* /*dm*/) const {
   }
+
+  // Frozen inputs (docs/models.md §5.4, §3.6.1): the node whose contact normal
+  // force F_n element e reads (−1: none), and the element force's derivatives
+  // with respect to that F_n and to F_u, the stage-0 force on the element's
+  // first stencil DoF (stage-1 terms only), at local (q, v): n values each,
+  // added into dfdFn and dfdFu. A model that differentiates F_n and F_u chains
+  // these with ∂F_n/∂q and ∂F_u/∂q.
+  virtual int normal_force_node(int /*e*/) const { return -1; }
+  virtual void frozen_input_derivatives(int /*e*/, const double* /*q*/, const double* /*v*/, double* /*dfdFn*/,
+                                        double* /*dfdFu*/) const {}
 };
 
 // Helper base for terms whose elements all have N local DoFs: stores stencils

@@ -23,7 +23,8 @@ TermModel::TermModel(const TermModel& other)
       q0_(other.q0_),
       v0_(other.v0_),
       constants_(other.constants_),
-      fixed_(other.fixed_) {
+      fixed_(other.fixed_),
+      extra_pattern_(other.extra_pattern_) {
   for (const auto& t : other.terms_) terms_.push_back(t->clone());
   finalize();
 }
@@ -31,7 +32,7 @@ TermModel::TermModel(const TermModel& other)
 void TermModel::finalize() {
   std::vector<Term*> raw;
   for (auto& t : terms_) raw.push_back(t.get());
-  assembly_ = std::make_unique<Assembly>(num_dofs_, raw);
+  assembly_ = std::make_unique<Assembly>(num_dofs_, raw, extra_pattern_);
   std::sort(fixed_.begin(), fixed_.end());
   fixed_.erase(std::unique(fixed_.begin(), fixed_.end()), fixed_.end());
 }
@@ -60,12 +61,22 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
     else has_stage1 = true;
   }
   assembly_->add_stage(0, q, v, constants_, req, out.force, &out.dfdq, &out.dfdv, &out.mass);
+  after_stage(0, q, v, req, out);
   if (has_stage1) {
     stage0_force_ = out.force;
     ctx.force_so_far = &stage0_force_;
     for (auto& term : terms_)
       if (term->stage() == 1) term->prepare(ctx);
     assembly_->add_stage(1, q, v, constants_, req, out.force, &out.dfdq, &out.dfdv, &out.mass);
+  }
+  after_stage(1, q, v, req, out);
+}
+
+void TermModel::gather_local(const Term& term, int e, const Vec& q, const Vec& v, double* lq, double* lv) const {
+  const auto s = term.stencil(e);
+  for (size_t a = 0; a < s.size(); ++a) {
+    lq[a] = is_dof(s[a]) ? q[s[a]] : constants_[constant_slot(s[a])];
+    lv[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
   }
 }
 

@@ -42,6 +42,8 @@ class TermModel : public Model {
   };
   std::vector<TermReading> term_readings(double t, const Vec& q, const Vec& v, bool prepare = true);
   const Vec& constants() const { return constants_; }
+  // Local q and v of element e of a term (constants filled in, their velocity 0).
+  void gather_local(const Term& term, int e, const Vec& q, const Vec& v, double* lq, double* lv) const;
 
  protected:
   TermModel() = default;
@@ -53,6 +55,12 @@ class TermModel : public Model {
   // Global auxiliary quantities (contact normal forces) at (t, q, v), computed
   // at the start of every evaluation and handed to the terms' prepare() in ctx.
   virtual void prepare_auxiliary(double /*t*/, const Vec& /*q*/, const Vec& /*v*/, EvalContext& /*ctx*/) {}
+  // Called after stage 0 and after stage 1 of an evaluation that is not
+  // mass-only, with what has been assembled so far: where a model adds the
+  // derivatives of its auxiliary quantities (docs/models.md §3.6.1).
+  virtual void after_stage(int /*stage*/, const Vec& /*q*/, const Vec& /*v*/, const AssemblyRequest& /*req*/,
+                           Evaluation& /*out*/) {}
+
   // Derived constructors fill num_dofs_, q0_, v0_, fixed_, constants_ and
   // terms_, then call finalize().
   void finalize();
@@ -61,6 +69,7 @@ class TermModel : public Model {
   Vec q0_, v0_, constants_;
   std::vector<int> fixed_;
   std::vector<std::unique_ptr<Term>> terms_;
+  std::vector<std::pair<int, int>> extra_pattern_;  // entries the pattern holds besides the terms' blocks
 
  private:
   std::unique_ptr<Assembly> assembly_;

@@ -354,6 +354,7 @@ void read_time(TableReader& top, Scene& s) {
     t->read_number("rtol", s.rtol, "a number > 0 and < 1", [](double x) { return x > 0.0 && x < 1.0; });
     t->read_number("atol", s.atol, "a number > 0", positive);
     t->read_bool("error_estimate", s.error_estimate);
+    t->read_bool("exact_contact_jacobian", s.exact_contact_jacobian);
     t->read_number("accuracy_m", s.accuracy_m, "a finite number > 0 (m)",
                    [](double x) { return std::isfinite(x) && x > 0.0; });
     t->finish();

@@ -140,6 +140,10 @@ struct Scene {
   // Target of the run's time error, mean over frames of the RMS over nodes [m];
   // 0: none. When set the run chooses its integrator and tolerance (docs/models.md §7.9).
   double accuracy_m = 0.0;
+  // Chain the exact derivatives of the contact normal force F_n and friction's
+  // F_u into the Jacobians and parameter derivatives (docs/models.md §3.6.1);
+  // false: they are frozen inputs (§5.4).
+  bool exact_contact_jacobian = false;
 
   TermSwitches terms;
   FemSettings fem;

@@ -57,9 +57,12 @@ ContactNormals::ContactNormals(const WovenGrid& grid, std::vector<double> warp_k
   }
   const size_t n = grid_.num_nodes();
   x_.assign(n, Vec3::Zero());
-  n_ = xw_ = xf_ = fu_ = fv_ = x_;
+  n_ = xw_ = xf_ = fu_ = fv_ = eig_val_ = x_;
   u_.assign(n, 0.0);
-  v_ = fn_ = u_;
+  v_ = fn_ = eig_sign_ = u_;
+  eig_vec_.assign(n, Mat3::Zero());
+  fit_points_.assign(n, {-1, -1, -1, -1, -1});
+  fallback_.assign(n, 0);
 }
 
 void ContactNormals::compute(const Vec& q) {
@@ -101,9 +104,14 @@ void ContactNormals::compute(const Vec& q) {
       Vec3 n = eig.eigenvectors().col(0);
       // Points on a line (no unique plane): fall back to the orientation vector.
       const double on = orient.norm();
-      if (eig.eigenvalues()[1] <= 1e-12 * eig.eigenvalues()[2] && on > 0.0) n = orient / on;
-      if (n.dot(orient) < 0.0) n = -n;
-      n_[id] = static_cast<double>(grid_.sign(i, j)) * n;
+      fallback_[id] = eig.eigenvalues()[1] <= 1e-12 * eig.eigenvalues()[2] && on > 0.0;
+      if (fallback_[id]) n = orient / on;
+      const double flip = n.dot(orient) < 0.0 ? -1.0 : 1.0;
+      n_[id] = static_cast<double>(grid_.sign(i, j)) * flip * n;
+      eig_vec_[id] = eig.eigenvectors();
+      eig_val_[id] = eig.eigenvalues();
+      eig_sign_[id] = static_cast<double>(grid_.sign(i, j)) * flip;
+      for (int k = 0; k < 5; ++k) fit_points_[id][k] = use[k] ? pts[k] : -1;
       xw_[id] = x_[id] - R_ * n_[id];  // crimped warp copy (docs/models.md §5.3)
       xf_[id] = x_[id] + R_ * n_[id];  // crimped weft copy
       fu_[id].setZero();

@@ -16,9 +16,13 @@
 //        bending stencil of that yarn containing the node (two segments, up to
 //        three bending stencils). F_n = 0 on the outer ring.
 //
-// F_n is a frozen input of the terms that use it: no derivative is provided.
-// compute() allocates nothing and costs O(nodes).
+// compute() allocates nothing and costs O(nodes). compute_gradient() adds the
+// exact derivatives (docs/models.md §3.6.1): ∂F_n/∂q as a sparse row per node
+// over a fixed stencil (the node's own plus two grid steps along its yarns and
+// the normals' neighbours), and the parts of F_n proportional to each yarn's
+// k_s and k_b, which give ∂F_n/∂Y and ∂F_n/∂B.
 #pragma once
+#include <array>
 #include <vector>
 
 #include "models/core/types.h"
@@ -43,12 +47,38 @@ class ContactNormals {
   const std::vector<Vec3>& warp_force() const { return fu_; }
   const std::vector<Vec3>& weft_force() const { return fv_; }
 
+  // After compute(q): ∂F_n/∂q of every node (zero where F_n = 0). The entries
+  // of a node's row are always the same DoFs in the same order (zeros kept),
+  // so a caller can map them to matrix slots once.
+  struct GradientRow {
+    std::vector<int> dof;
+    std::vector<double> value;
+  };
+  void compute_gradient(const Vec& q);
+  const std::vector<GradientRow>& gradient() const { return grad_; }
+  // Parts of F_n (before the ReLU, zero where F_n = 0) proportional to the
+  // warp's k_s, the warp's k_b, the weft's k_s and the weft's k_b of the node:
+  // ∂F_n/∂k = part/k. Valid after compute_gradient().
+  struct StiffnessParts {
+    double warp_stretch = 0.0, warp_bending = 0.0, weft_stretch = 0.0, weft_bending = 0.0;
+  };
+  const std::vector<StiffnessParts>& stiffness_parts() const { return parts_; }
+
  private:
   WovenGrid grid_;
   std::vector<double> warp_ks_, warp_kb_, weft_ks_, weft_kb_;
   double R_;
   std::vector<Vec3> x_, n_, xw_, xf_, fu_, fv_;
   std::vector<double> u_, v_, fn_;
+  // Per node: eigenvectors (columns, ascending eigenvalues) and eigenvalues of
+  // the scatter, the points it was fitted to and the sign n = sign·e₀.
+  std::vector<Mat3> eig_vec_;
+  std::vector<Vec3> eig_val_;
+  std::vector<std::array<int, 5>> fit_points_;  // node ids, −1 unused
+  std::vector<double> eig_sign_;
+  std::vector<char> fallback_;  // n from the orientation vector (points on a line)
+  std::vector<GradientRow> grad_;
+  std::vector<StiffnessParts> parts_;
 };
 
 }  // namespace wl

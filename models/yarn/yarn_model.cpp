@@ -1,5 +1,6 @@
 #include "models/yarn/yarn_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -56,7 +57,14 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   if (scene_.yarn_viscosity_Pa_s > 0.0) add_damping();
   add_pins();
   add_obstacles();
+  if (normals_ && scene.exact_contact_jacobian) {
+    normals_->compute(q0_);
+    normals_->compute_gradient(q0_);  // the structure of ∂F_n/∂q, the same at every state
+    chain_.emplace(terms_, *normals_);
+    extra_pattern_ = chain_->pattern_entries();
+  }
   finalize();
+  if (chain_) chain_->bind(pattern());
 }
 
 // Rest state: upright x = (iL, 0, h − jL) (cloth in the xz plane, wind along
@@ -315,7 +323,108 @@ std::array<int, 8> YarnModel::segment_stencil(const Segment& s) const {
 void YarnModel::prepare_auxiliary(double, const Vec& q, const Vec&, EvalContext& ctx) {
   if (!normals_) return;
   normals_->compute(q);
+  if (chain_) normals_->compute_gradient(q);
   ctx.normal_force = normals_->normal_force();
+}
+
+void YarnModel::after_stage(int stage, const Vec& q, const Vec& v, const AssemblyRequest& req, Evaluation& out) {
+  if (!chain_) return;
+  if (stage == 0) chain_->keep_stage0_rows(req, out);
+  else chain_->add_jacobians(*this, q, v, *normals_, req, out);
+}
+
+// ∂F_n/∂p from the parts of F_n proportional to each yarn's k_s (∝ Y) and k_b
+// (∝ B), docs/models.md §3.6.1.
+std::vector<double> YarnModel::normal_force_parameter_derivative(const std::string& key) const {
+  auto per_unit = [&](const std::string& type, const char* field, double value) {
+    return value > 0.0 && yarn_type_key(type, field) == key ? 1.0 / value : 0.0;
+  };
+  auto cycled = [](const std::vector<std::string>& cycle, int k) { return cycle[k % cycle.size()]; };
+  const auto& parts = normals_->stiffness_parts();
+  std::vector<double> dfn_dp(grid_.num_nodes(), 0.0);
+  for (int j = 0; j < grid_.nv(); ++j)
+    for (int i = 0; i < grid_.nu(); ++i) {
+      const int id = grid_.node(i, j);
+      const std::string warp = cycled(scene_.warp_yarn_types, j), weft = cycled(scene_.weft_yarn_types, i);
+      const YarnType &yw = yarn_type(warp), &yf = yarn_type(weft);
+      dfn_dp[id] = parts[id].warp_stretch * per_unit(warp, kStretchModulusField, yw.stretch_modulus_Pa) +
+                   parts[id].warp_bending * per_unit(warp, kBendingModulusField, yw.bending_modulus_Pa) +
+                   parts[id].weft_stretch * per_unit(weft, kStretchModulusField, yf.stretch_modulus_Pa) +
+                   parts[id].weft_bending * per_unit(weft, kBendingModulusField, yf.bending_modulus_Pa);
+    }
+  return dfn_dp;
+}
+
+// The terms' ∂f/∂p, with exact_contact_jacobian what passes through F_n and
+// F_u (docs/models.md §3.6.1), and what passes through the anchors' dū/dp
+// (∂F/∂ū = −∂F/∂u, docs/models.md §9.2).
+bool YarnModel::force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v,
+                                           Vec& dfdp) const {
+  bool any = TermModel::force_parameter_derivative(key, t, q, v, dfdp);
+  if (chain_)
+    any = chain_->add_parameter_derivative(*this, key, q, v, normal_force_parameter_derivative(key), dfdp) || any;
+  const auto k = std::find(anchor_keys_.begin(), anchor_keys_.end(), key);
+  if (friction_term_ < 0 || k == anchor_keys_.end()) return any;
+  const Term& friction = *terms_[friction_term_];
+  for (int e = 0; e < friction.num_elements(); ++e) {
+    const double du_dp = anchor_dp_(e, k - anchor_keys_.begin());
+    const int dof = friction.stencil(e)[0];
+    if (du_dp == 0.0 || !is_dof(dof)) continue;
+    double lq = 0.0, lv = 0.0, f = 0.0, dfdu = 0.0;
+    gather_local(friction, e, q, v, &lq, &lv);
+    friction.evaluate(e, &lq, &lv, ElementOutput{&f, &dfdu});
+    dfdp[dof] -= dfdu * du_dp;
+    any = true;
+  }
+  return any;
+}
+
+std::vector<std::string> YarnModel::asymmetric_terms() const {
+  std::vector<std::string> names = TermModel::asymmetric_terms();
+  if (!chain_) return names;
+  for (const auto& term : terms_)
+    if (term->num_elements() > 0 && term->normal_force_node(0) >= 0 &&
+        std::find(names.begin(), names.end(), term->name()) == names.end())
+      names.push_back(term->name());
+  return names;
+}
+
+void YarnModel::accept_step_sensitivities(const std::vector<std::string>& keys, const Vec& q, const Vec& v,
+                                          const Eigen::MatrixXd& dq_dp, const Eigen::MatrixXd& dv_dp, double h) {
+  if (friction_term_ < 0) return;
+  const auto* gong = dynamic_cast<const GongFrictionTerm*>(terms_[friction_term_].get());
+  if (!gong) return;  // Cirio's return mapping: not carried (docs/models.md §9.2)
+  const int ne = gong->num_elements();
+  if (anchor_keys_ != keys || anchor_dp_.rows() != ne) {
+    anchor_keys_ = keys;
+    anchor_dp_ = Eigen::MatrixXd::Zero(ne, static_cast<Eigen::Index>(keys.size()));
+  }
+  const auto& grad = normals_->gradient();
+  Vec dfdp;
+  for (size_t k = 0; k < keys.size(); ++k) {
+    const Vec sq = dq_dp.col(static_cast<Eigen::Index>(k)), sv = dv_dp.col(static_cast<Eigen::Index>(k));
+    std::vector<double> dfn_dp;
+    if (chain_) {
+      TermModel::force_parameter_derivative(keys[k], 0.0, q, v, dfdp);
+      dfn_dp = normal_force_parameter_derivative(keys[k]);
+    }
+    const bool is_mu = keys[k] == kFrictionCoefficientKey;
+    for (int e = 0; e < ne; ++e) {
+      const int dof = gong->stencil(e)[0];
+      if (!is_dof(dof)) continue;
+      const GongFrictionTerm::AnchorRate r = gong->anchor_rate(e);
+      double dsigma = is_mu ? r.d_mu : 0.0;
+      if (chain_) {
+        const int node = friction_node_[e];
+        double dfn = dfn_dp[node];
+        for (size_t c = 0; c < grad[node].dof.size(); ++c) dfn += grad[node].value[c] * sq[grad[node].dof[c]];
+        const double dfu = chain_->tangential_directional(friction_term_, e, sq, sv) +
+                           chain_->tangential_parameter_derivative(*this, friction_term_, e, keys[k], q, v, dfdp);
+        dsigma += r.d_Fu * dfu + r.d_Fn * dfn;
+      }
+      anchor_dp_(e, static_cast<Eigen::Index>(k)) += h * (dsigma * v[dof] + r.sigma * sv[dof]);
+    }
+  }
 }
 
 Vec3 YarnModel::position(const Vec& q, int i, int j) const { return q.segment<3>(grid_.dofs(grid_.node(i, j)).x); }

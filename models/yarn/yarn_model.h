@@ -8,6 +8,7 @@
 #include "models/common/obstacle_contact.h"
 #include "models/core/term_model.h"
 #include "models/scene/scene.h"
+#include "models/yarn/contact_chain.h"
 #include "models/yarn/contact_normals.h"
 #include "models/yarn/woven_grid.h"
 
@@ -26,6 +27,19 @@ class YarnModel : public TermModel {
   std::string invalid_state(const Vec& q) const override;
   Frame obstacle_frame(double t) const override;
   std::map<std::string, std::string> describe() const override;
+  // With time.exact_contact_jacobian, ∂f/∂p includes what passes through F_n and
+  // F_u (docs/models.md §3.6.1, §9.1).
+  bool force_parameter_derivative(const std::string& key, double t, const Vec& q, const Vec& v,
+                                  Vec& dfdp) const override;
+  bool exact_contact_jacobian() const { return chain_.has_value(); }
+  // With exact_contact_jacobian the readers of F_n (Gong's shear) are asymmetric too.
+  std::vector<std::string> asymmetric_terms() const override;
+  // dū/dp of Gong's friction anchors over the step (docs/models.md §9.2):
+  //   dū/dp += h (dσ/dp u̇ + σ S_u̇),  dσ/dp = σ′ (sign F_u dF_u/dp − μ dF_n/dp − F_n dμ/dp),
+  // with dF_u/dp, dF_n/dp total derivatives along (S_q, S_v) (exact with
+  // exact_contact_jacobian; without it only σ S_u̇ and the μ term).
+  void accept_step_sensitivities(const std::vector<std::string>& keys, const Vec& q, const Vec& v,
+                                 const Eigen::MatrixXd& dq_dp, const Eigen::MatrixXd& dv_dp, double h) override;
 
   const WovenGrid& grid() const { return grid_; }
   // Position of node (i, j) and its current material coordinates in state q.
@@ -35,6 +49,8 @@ class YarnModel : public TermModel {
  protected:
   // The contact normals and F_n at q (docs/models.md §3.6), handed to the terms in ctx.
   void prepare_auxiliary(double t, const Vec& q, const Vec& v, EvalContext& ctx) override;
+  // The chain of ∂F_n/∂q and ∂F_u/∂q into the Jacobians (exact_contact_jacobian).
+  void after_stage(int stage, const Vec& q, const Vec& v, const AssemblyRequest& req, Evaluation& out) override;
 
  private:
   struct Segment {
@@ -73,7 +89,12 @@ class YarnModel : public TermModel {
   WovenGrid grid_;
   YarnConstants warp_, weft_;
   std::vector<Segment> segments_;
-  std::optional<ContactNormals> normals_;           // only when a term needs F_n
+  std::optional<ContactNormals> normals_;  // only when a term needs F_n
+  std::optional<ContactChain> chain_;      // only with exact_contact_jacobian and F_n
+  std::vector<std::string> anchor_keys_;   // keys of anchor_dp_'s columns
+  Eigen::MatrixXd anchor_dp_;              // dū/dp per friction element (rows) and key
+  // ∂F_n/∂p per node for the parameter `key` at the last evaluation (needs chain_).
+  std::vector<double> normal_force_parameter_derivative(const std::string& key) const;
   int friction_term_ = -1;                          // index of the friction term in terms_, −1 without friction
   std::vector<int> friction_node_, friction_axis_;  // per friction element: node id, 0 = u / 1 = v
   ObstacleContact obstacles_;                       // rigid obstacles of the scene (docs/models.md §3.11)

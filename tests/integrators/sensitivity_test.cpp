@@ -58,6 +58,8 @@ double sensitivity_error(const Scene& scene, const std::string& model_name, cons
     const Vec exact = base.dq_dp.col(k);
     EXPECT_GT(exact.norm(), 0.0) << keys[k];
     const double err = (exact - fd).norm() / fd.norm();
+    std::printf("[ sens ] %s %s: %s relative error %.2e\n", model_name.c_str(), integrator.c_str(), keys[k].c_str(),
+                err);
     if (k < bounds.size()) {
       EXPECT_LT(err, bounds[k]) << keys[k];
     }
@@ -111,6 +113,37 @@ TEST(ForwardSensitivity, FrozenContactForcesCostWhatTheDocsState) {
   const Scene s = hanging();
   EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", kYarnKeys, 1e-3, 1e-5, {1e-3, 0.5, 1e-3, 1e-3}), 1.0);
   EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", {kFrictionCoefficientKey}, 1e-3, 1e-5, {0.1}), 1.0);
+}
+
+// With time.exact_contact_jacobian the chain through F_n and F_u is in the
+// Jacobians and in ∂f/∂p (docs/models.md §3.6.1): the sensitivities of the
+// shipped physics over 25 steps match central differences to 1e-4 for every
+// parameter (docs/models.md §9.3). μ barely moves this cloth: its differences
+// need a step of 1 % to rise above the Newton tolerance's noise (at 1e-5 they
+// are 2.5 % off, at 1e-3 0.1 %, at 1e-2 5e-5).
+TEST(ForwardSensitivity, ExactContactDerivativesMakeTheShippedPhysicsExact) {
+  Scene s = parse_scene(test::hanging_cloth_toml(6, 0.025), "sensitivity.toml");
+  s.exact_contact_jacobian = true;
+  const double newton = sensitivity_error(s, "yarn", "be-newton", kYarnKeys, 1e-3, 1e-5, {1e-4, 1e-4, 1e-4, 1e-4});
+  const double newton_mu = sensitivity_error(s, "yarn", "be-newton", {kFrictionCoefficientKey}, 1e-3, 1e-2, {1e-4});
+  const double sdirk =
+      sensitivity_error(s, "yarn", "sdirk2", {kYarnKeys[1], kFrictionCoefficientKey}, 1e-3, 1e-2, {1e-4, 2e-4});
+  std::printf("[ sens ] exact contact derivatives, worst relative error: be-newton %.2e (mu %.2e), sdirk2 %.2e\n",
+              newton, newton_mu, sdirk);
+}
+
+// Where the yarns slide (μ = 10⁻⁴: the slide indicator reaches 0.8) the
+// friction anchors' history depends on μ; carried through the anchor update
+// (docs/models.md §9.2) the sensitivity of μ matches central differences to
+// 2.6e-4 (1 % steps); without ∂ū/∂p it is off by 100 %.
+TEST(ForwardSensitivity, FrictionAnchorsCarryTheirDerivativeWhileSliding) {
+  Scene s = parse_scene(test::hanging_cloth_toml(6, 0.025), "sensitivity.toml");
+  s.exact_contact_jacobian = true;
+  s.contact.friction_coefficient = 1e-4;
+  const double mu = sensitivity_error(s, "yarn", "be-newton", {kFrictionCoefficientKey}, 1e-3, 1e-2, {1e-3});
+  const double others =
+      sensitivity_error(s, "yarn", "be-newton", {kYarnKeys[1], kShearModulusKey}, 1e-3, 1e-5, {1e-4, 2e-4});
+  std::printf("[ sens ] sliding: mu %.2e, Y and S %.2e\n", mu, others);
 }
 
 // be-linear holds K₀ and D₀ when differentiating its step: an O(h) error that

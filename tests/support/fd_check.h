@@ -60,4 +60,21 @@ FdReport check_element(const Term& term, int element, const std::vector<LocalSta
 FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(double)>& make, double p, int k,
                                     int element, const std::vector<LocalState>& states, const FdOptions& opt = {});
 
+// Derivatives of a term's element with respect to its frozen inputs
+// (Term::frozen_input_derivatives; input 0 = F_n, 1 = F_u) against central
+// differences of the force in that input, with a relative step: `make(a)`
+// builds the term with element `element` prepared at input value a (≠ 0). The
+// derivative must not be zero at every state.
+FdReport check_frozen_input_derivative(const std::function<std::unique_ptr<Term>(double)>& make, double a, int input,
+                                       int element, const std::vector<LocalState>& states, const FdOptions& opt = {});
+
+// A derivative outside any term (a model's auxiliary quantity, its assembled
+// Jacobian): the columns `cols` of the analytic ∂f/∂x against central
+// differences of f, with step opt.rel_step × the extent of x. Reports the
+// relative (Frobenius) error over the columns; it fails above opt.rtol or when
+// the analytic columns are all zero.
+FdReport check_jacobian_columns(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& f,
+                                const Eigen::VectorXd& x, const std::function<Eigen::VectorXd(int)>& analytic_column,
+                                const std::vector<int>& cols, const FdOptions& opt = {});
+
 }  // namespace wl::test

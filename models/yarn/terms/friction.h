@@ -30,6 +30,7 @@ class FrictionTerm : public StencilTerm<1> {
   double anchor(int e) const { return anchor_[e]; }
   double tangential_force(int e) const { return Fu_[e]; }  // frozen F_u
   double contact_force(int e) const { return Fn_[e]; }     // frozen F_n
+  int normal_force_node(int e) const override { return node_[e]; }
   // ∂F/∂μ at frozen F_u, F_n and anchor (docs/models.md §9.1).
   std::vector<std::string> parameter_keys() const override { return {kFrictionCoefficientKey}; }
 

@@ -36,6 +36,10 @@ void CirioFrictionTerm::evaluate(int e, const double* q, const double* v, const 
   if (out.dfdv) out.dfdv[0] = -df_;
 }
 
+void CirioFrictionTerm::frozen_input_derivatives(int e, const double*, const double*, double* dfdFn, double*) const {
+  dfdFn[0] += -slip_direction(e) * mu_;
+}
+
 // ∂F/∂μ = −sign(u − ū) F_n while slipping, 0 while sticking.
 void CirioFrictionTerm::parameter_derivative(int e, int, const double*, const double*, double* dfdp) const {
   dfdp[0] += -slip_direction(e) * Fn_[e];

@@ -38,6 +38,8 @@ class CirioFrictionTerm : public FrictionTerm {
   void accept_step(const EvalContext& ctx, double h) override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
   void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
+  // ∂F/∂F_n = −sign(u − ū) μ while slipping, 0 while sticking; F_u is not read.
+  void frozen_input_derivatives(int e, const double* q, const double* v, double* dfdFn, double* dfdFu) const override;
   // 0 = stick, 1 = slip (the mode held for the current step).
   std::vector<double> sliding_state() const override;
   int slip_direction(int e) const { return e < static_cast<int>(mode_.size()) ? mode_[e] : 0; }  // 0, ±1

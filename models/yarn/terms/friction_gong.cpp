@@ -57,6 +57,24 @@ void GongFrictionTerm::parameter_derivative(int e, int, const double* q, const d
   dfdp[0] += gong_friction_law(q[0] - anchor_[e], Fu_[e], Fn_[e], mu_, kf_, p_).d_mu;
 }
 
+void GongFrictionTerm::frozen_input_derivatives(int e, const double* q, const double*, double* dfdFn,
+                                                double* dfdFu) const {
+  const GongFrictionResponse r = gong_friction_law(q[0] - anchor_[e], Fu_[e], Fn_[e], mu_, kf_, p_);
+  dfdFn[0] += r.d_Fn;
+  dfdFu[0] += r.d_Fu;
+}
+
+// σ′ = 10⁴ σ(1 − σ): ∂σ/∂F_u = σ′ sign(F_u), ∂σ/∂F_n = −σ′μ, ∂σ/∂μ = −σ′F_n.
+GongFrictionTerm::AnchorRate GongFrictionTerm::anchor_rate(int e) const {
+  AnchorRate r;
+  r.sigma = slide_indicator(Fu_[e], Fn_[e]);
+  const double ds = kSlideSharpness * r.sigma * (1.0 - r.sigma);
+  r.d_Fu = Fu_[e] > 0.0 ? ds : (Fu_[e] < 0.0 ? -ds : 0.0);
+  r.d_Fn = -ds * mu_;
+  r.d_mu = -ds * Fn_[e];
+  return r;
+}
+
 std::vector<double> GongFrictionTerm::sliding_state() const {
   std::vector<double> s(num_elements());
   for (int e = 0; e < num_elements(); ++e) s[e] = slide_indicator(Fu_[e], Fn_[e]);

@@ -42,6 +42,14 @@ class GongFrictionTerm : public FrictionTerm {
   void accept_step(const EvalContext& ctx, double h) override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
   void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
+  void frozen_input_derivatives(int e, const double* q, const double* v, double* dfdFn, double* dfdFu) const override;
+  // The anchor's rate σ = sigmoid(10⁴(|F_u| − μF_n)) of element e at the last
+  // prepared inputs, with its derivatives (for the anchor's sensitivity,
+  // docs/models.md §9.2).
+  struct AnchorRate {
+    double sigma = 0.0, d_Fu = 0.0, d_Fn = 0.0, d_mu = 0.0;
+  };
+  AnchorRate anchor_rate(int e) const;
   // sigmoid(10⁴(|F_u| − μF_n)) at the last prepared inputs.
   std::vector<double> sliding_state() const override;
 

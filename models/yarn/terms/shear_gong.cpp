@@ -110,4 +110,10 @@ void GongShearTerm::evaluate(int e, const double* q, const double*, const Elemen
   a.write(dV, d2V, out);
 }
 
+void GongShearTerm::frozen_input_derivatives(int e, const double* q, const double* v, double* dfdFn, double*) const {
+  LVec f = LVec::Zero();
+  evaluate(e, q, v, ElementOutput{f.data()});
+  for (int a = 0; a < 9; ++a) dfdFn[a] += f[a] / (Fn_[e] + 1.0);
+}
+
 }  // namespace wl

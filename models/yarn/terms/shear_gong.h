@@ -44,6 +44,9 @@ class GongShearTerm : public ProportionalParameterTerm<9> {
     double k = 0.0, dk = 0.0, d2k = 0.0;
   };
   Stiffness stiffness(int e, double phi) const;
+  // k_sh ∝ (F_n + 1) in both laws, so ∂f/∂F_n = f/(F_n + 1) (docs/models.md §3.6.1).
+  int normal_force_node(int e) const override { return node_[e]; }
+  void frozen_input_derivatives(int e, const double* q, const double* v, double* dfdFn, double* dfdFu) const override;
   double lock_angle() const { return phi_l_; }  // φ_l = 2 arcsin(R/L)
 
  private:
