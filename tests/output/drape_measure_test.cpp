@@ -29,12 +29,7 @@ Frame square(double t, Map map) {
       const Eigen::Vector2d p = map(Eigen::Vector2d(i * 1e-3 - kC, j * 1e-3 - kC));
       f.points.row(i + kN * j) << kC + p.x(), kC + p.y(), 0.0;
     }
-  CellBlock quads{CellType::quad, {}};
-  for (int j = 0; j + 1 < kN; ++j)
-    for (int i = 0; i + 1 < kN; ++i)
-      quads.connectivity.insert(quads.connectivity.end(),
-                                {i + kN * j, i + 1 + kN * j, i + 1 + kN * (j + 1), i + kN * (j + 1)});
-  f.cells = {quads};
+  f.cells = {test::quad_grid_cells(kN)};
   return f;
 }
 

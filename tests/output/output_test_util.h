@@ -11,7 +11,19 @@
 #include <fstream>
 #include <string>
 
+#include "models/core/frame.h"
+
 namespace wl::test {
+
+// The quads of an n×n grid of points numbered i + n·j.
+inline CellBlock quad_grid_cells(int n) {
+  CellBlock quads{CellType::quad, {}};
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i)
+      quads.connectivity.insert(quads.connectivity.end(),
+                                {i + n * j, i + 1 + n * j, i + 1 + n * (j + 1), i + n * (j + 1)});
+  return quads;
+}
 
 // A fresh folder under the system temp dir, removed with everything in it.
 class ScratchDir {

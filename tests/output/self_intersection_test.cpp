@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/output/output_test_util.h"
+
 namespace wl {
 namespace {
 
@@ -16,12 +18,7 @@ Frame grid(int n, double fold_z) {  // n×n quads in the plane z = 0; the half x
       const double x = double(i) / (n - 1), y = double(j) / (n - 1);
       f.points.row(i + n * j) << (x > 0.5 ? 1.0 - x : x), y, (x > 0.5 ? fold_z * (x - 0.5) : 0.0);
     }
-  CellBlock quads{CellType::quad, {}};
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i)
-      quads.connectivity.insert(quads.connectivity.end(),
-                                {i + n * j, i + 1 + n * j, i + 1 + n * (j + 1), i + n * (j + 1)});
-  f.cells = {quads};
+  f.cells = {test::quad_grid_cells(n)};
   return f;
 }
 
