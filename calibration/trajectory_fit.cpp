@@ -101,7 +101,7 @@ class Simulator {
     integrator_ = opt.integrator.empty() ? scene.integrator : opt.integrator;
     if (!make_integrator(integrator_)->offers_sensitivities())
       throw TrajectoryFitError("integrator '" + integrator_ +
-                               "' offers no parameter sensitivities; use be-linear or be-newton");
+                               "' offers no parameter sensitivities; use be-linear, be-newton or sdirk2");
     const std::unique_ptr<Model> model = make_model(scene, opt.model);
     const std::vector<std::string> keys = model->parameter_keys();
     for (const std::string& key : opt.free) {
@@ -122,8 +122,11 @@ class Simulator {
       const std::unique_ptr<Model> model = make_model(s, opt_.model);
       const std::unique_ptr<Integrator> in = make_integrator(integrator_);
       in->track_sensitivities(opt_.free);
-      IntegratorOptions io;
+      IntegratorOptions io;  // the scene's step, or its error control when adaptive
       io.dt = s.dt_s;
+      io.adaptive = s.adaptive;
+      io.rtol = s.rtol;
+      io.atol = s.atol;
       in->initialize(*model, 0.0, model->initial_q(), model->initial_v(), io);
       for (size_t k = 0; k < frames_.size(); ++k) {
         const StepResult r = in->advance_to(frames_[k].time);

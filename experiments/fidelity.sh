@@ -11,7 +11,12 @@
 # Results and Pareto charts in results/fidelity/<scene>/.
 # CPU times are of one thread (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1): a
 # busy machine inflates multi-threaded CPU time through spinning threads.
-# Extra arguments go to `weavelab fidelity` (e.g. --tolerance 0.0008).
+# Each ladder is a Snakemake workflow (experiments/fidelity/Snakefile): the
+# reference once, then one job per rung on every core, cached by the scene's
+# hash, the options and the program, so a rerun only runs what changed.
+# WL_OPTIONS adds options of `weavelab fidelity` (e.g. WL_OPTIONS="--tolerance
+# 0.0008"); extra arguments go to snakemake (e.g. --cores 1, or --profile
+# experiments/profiles/cluster).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh >/dev/null
@@ -23,11 +28,10 @@ for spec in hanging_wind:0.5:3:controlled hanging_wind_65:0.2:1:scene; do  # sce
   cal=results/calibration/${name}_fidelity
   [ -f "$cal/params.toml" ] ||
     build/weavelab calibrate "experiments/scenes/$name.toml" --patch 17 --starts 1 --quiet --out "$cal"
-  extra=()
-  if [ "$resolution" = scene ]; then extra=(--no-error-estimate --variants "$model_rungs"); fi
-  build/weavelab fidelity "experiments/scenes/$name.toml" --duration "$duration" --repeats "$repeats" \
-    --fem-params "$cal/params.toml" --resolution "$resolution" "${extra[@]}" \
-    --out "results/fidelity/$name" "$@"
-  /usr/bin/python3 experiments/plot_fidelity.py "results/fidelity/$name"
+  options="--duration $duration --repeats $repeats --fem-params $cal/params.toml --resolution $resolution"
+  config=(scene="experiments/scenes/$name.toml" out="results/fidelity/$name")
+  if [ "$resolution" = scene ]; then options+=" --no-error-estimate"; config+=(variants="$model_rungs"); fi
+  snakemake -s experiments/fidelity/Snakefile --cores "$(nproc)" \
+    --config "${config[@]}" options="$options ${WL_OPTIONS:-}" "$@"
 done
 echo "fidelity.sh: $(( $(date +%s) - start )) s wall (without the build); results in results/fidelity/" >&2

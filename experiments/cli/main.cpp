@@ -15,6 +15,7 @@
 #include "experiments/driver/determinism.h"
 #include "experiments/driver/diagnose.h"
 #include "experiments/driver/fidelity.h"
+#include "experiments/driver/fidelity_reference.h"
 #include "experiments/driver/fit_command.h"
 #include "experiments/driver/interrupt.h"
 #include "experiments/driver/modes.h"
@@ -248,6 +249,15 @@ int main(int argc, char** argv) {
                      "Do not estimate each run's time error (halves the cost; no time-error column)");
   fidelity->add_option("--out", fid_out, "Output folder (default results/fidelity/<scene name>)");
   fidelity->add_flag("--quiet", fid_quiet, "No progress on stderr");
+  std::string fid_reference_from;
+  bool fid_list = false;
+  fidelity->add_flag("--reference-only", fid.reference_only,
+                     "Run only the reference, and keep it in OUT/reference.bin for --reference-from");
+  fidelity->add_option("--reference-from", fid_reference_from,
+                       "Folder of a --reference-only run with the same scene and options: its reference is read, "
+                       "not run again (the ladder as separate jobs, experiments/fidelity/Snakefile)");
+  fidelity->add_flag("--list-variants", fid_list,
+                     "Print the variants the ladder would run, one per line, and exit (nothing is run or written)");
   wl::FitCommandConfig fitc;
   std::string fit_scene, fit_target, fit_free, fit_out;
   std::vector<std::string> fit_starts;
@@ -264,12 +274,20 @@ int main(int argc, char** argv) {
   fit->add_option("--start", fit_starts, "Start value KEY=VALUE of a fitted key (repeatable; default the scene's)");
   fit->add_option("--frames", fitc.frames, "Fit the target's first N frames after t = 0 (default all)");
   fit->add_option("--model", fitc.fit.model, "Model that is fitted: yarn, fem")->capture_default_str();
-  fit->add_option("--integrator", fitc.fit.integrator, "be-linear or be-newton (default the scene's)");
+  fit->add_option("--integrator", fitc.fit.integrator,
+                  "An integrator with parameter sensitivities: be-linear, be-newton or sdirk2 (default the scene's)");
   fit->add_option("--bound-factor", fitc.fit.bound_factor, "Bounds start/b ... start*b")->capture_default_str();
   fit->add_option("--max-iterations", fitc.fit.max_iterations, "Ceres iterations")->capture_default_str();
   fit->add_option("--fem-params", fitc.fem_params,
                   "FEM parameter file (as written by `calibrate` or `fit --model fem`): the continuum's values "
                   "where --start does not set them");
+  std::string fit_resolution = "scene";
+  double fit_rtol = 1e-4;
+  fit->add_option("--resolution", fit_resolution,
+                  "Resolution of the fitted simulations: scene (the scene's integrator and step, as the published "
+                  "fit) or controlled (sdirk2 under error control at --rtol, atol = 1e-3 rtol)")
+      ->capture_default_str();
+  fit->add_option("--rtol", fit_rtol, "Tolerance of the controlled resolution")->capture_default_str();
   fit->add_option("--out", fit_out, "Output folder (default results/fit/<scene name>)");
   fit->add_flag("--quiet", fit_quiet, "No progress on stderr");
 
@@ -412,7 +430,18 @@ int main(int argc, char** argv) {
           wl::output_folder(fidelity->count("--out") ? std::optional(fid_out) : std::nullopt,
                             std::filesystem::path("results/fidelity") / std::filesystem::path(fid_scene).stem());
       fid.progress = !fid_quiet;
+      if (!fid_reference_from.empty()) fid.reference_from = fid_reference_from;
+      if (fid.reference_only && (fid.reference_from || fidelity->count("--variants")))
+        throw std::invalid_argument(
+            "--reference-only: runs no variant; --variants and --reference-from "
+            "do not go with it");
       const wl::FidelityPlan plan = wl::plan_fidelity(fid);  // every input checked; nothing written yet
+      if (fid_list) {
+        for (const wl::PlannedVariant& v : plan.variants) std::printf("%s\n", v.name.c_str());
+        return 0;
+      }
+      // a missing or mismatched reference file is bad input: exit 2 before anything is written
+      if (fid.reference_from) wl::read_fidelity_reference(*fid.reference_from, wl::fidelity_reference_key(fid));
       try {
         const wl::FidelityResult r = wl::run_fidelity(fid, plan);
         const wl::FidelityChoice& c = r.within_tolerance;
@@ -508,6 +537,7 @@ int main(int argc, char** argv) {
         throw std::invalid_argument("--max-iterations: got " + std::to_string(fitc.fit.max_iterations) +
                                     ", expected >= 1");
       fitc.fit.progress = !fit_quiet;
+      fitc.resolution = wl::parse_resolution("--resolution", fit_resolution, fit_rtol);
       fitc.out_dir = wl::output_folder(fit->count("--out") ? std::optional(fit_out) : std::nullopt,
                                        std::filesystem::path("results/fit") / std::filesystem::path(fit_scene).stem());
       const wl::FitCommandPlan plan = wl::plan_fit(fitc);  // every input checked; nothing written yet

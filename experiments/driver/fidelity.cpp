@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "experiments/driver/experiment_meta.h"
+#include "experiments/driver/fidelity_reference.h"
 #include "experiments/driver/recorded_run.h"
 #include "experiments/driver/time_error.h"
 #include "experiments/output/atomic_file.h"
@@ -17,17 +18,6 @@
 
 namespace wl {
 namespace {
-
-using Points = decltype(Frame::points);  // crossings × 3, row-major: the layout of 3 DoFs per vertex
-
-// The reference's crossings at its output frames: positions, current material
-// coordinates (u, v) and the change of its total energy T + V since t = 0.
-struct ReferenceFrames {
-  std::vector<Points> x;
-  std::vector<std::vector<Vec2>> uv;
-  std::vector<double> energy_change;  // (T + V)(t_k) − (T + V)(0)
-  int crossings() const { return x.empty() ? 0 : static_cast<int>(x.front().rows()); }
-};
 
 const DataArray& point_array(const Frame& f, const std::string& name) {
   for (const DataArray& a : f.point_data)
@@ -66,7 +56,7 @@ class DistanceTally {
 };
 
 // Yarn variant: distance at the same crossing (same warp and weft).
-std::vector<double> crossing_distances(const Points& x, const Points& ref) {
+std::vector<double> crossing_distances(const FramePoints& x, const FramePoints& ref) {
   std::vector<double> d(ref.rows());
   for (Eigen::Index n = 0; n < ref.rows(); ++n) d[n] = (x.row(n) - ref.row(n)).norm();
   return d;
@@ -74,7 +64,7 @@ std::vector<double> crossing_distances(const Points& x, const Points& ref) {
 
 // Continuum variant: distance to the surface at the crossing's material point;
 // NaN where the crossing slid out of the mesh.
-std::vector<double> surface_distances(const FemModel& geometry, const Points& x, const Points& ref,
+std::vector<double> surface_distances(const FemModel& geometry, const FramePoints& x, const FramePoints& ref,
                                       const std::vector<Vec2>& uv) {
   const Vec q = Eigen::Map<const Vec>(x.data(), x.size());
   std::vector<double> d(ref.rows(), NAN);
@@ -247,29 +237,38 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   for (const auto& [name, why] : p.left_out)  // also with --quiet: what the ladder lacks
     std::fprintf(stderr, "fidelity: %s left out: %s\n", name.c_str(), why.c_str());
 
-  // 1. The reference: its crossings, material coordinates and energy at every frame.
+  // 1. The reference: its crossings, material coordinates and energy at every
+  // frame, run here or read from the file of a --reference-only run.
   ReferenceFrames ref;
   RecordOptions rec;
   rec.progress = c.progress;
   rec.energies = true;
   rec.label = p.reference.name;
   rec.step_ends = true;  // for the Richardson time-error estimate
-  rec.on_frame = [&](const Frame& f) {
-    const DataArray &u = point_array(f, "u"), &v = point_array(f, "v");
-    std::vector<Vec2> uv;
-    for (Eigen::Index n = 0; n < f.points.rows(); ++n) uv.emplace_back(u.values[n], v.values[n]);
-    ref.x.push_back(f.points);
-    ref.uv.push_back(std::move(uv));
-  };
-  if (c.progress) std::fprintf(stderr, "fidelity: reference %s\n", p.reference.name.c_str());
-  const Scene& rs = p.reference.variant.scene;
-  const RecordedRun rr = timed_runs(rs, "yarn", rec, c.repeats);
-  if (rr.result.outcome != Outcome::ok)
-    throw std::runtime_error("the reference '" + p.reference.name + "' ended '" + to_string(rr.result.outcome) +
-                             "' at t = " + std::to_string(rr.end_time) + " s: " + rr.result.message);
-  for (size_t k = 0; k < rr.kinetic_J.size(); ++k)
-    ref.energy_change.push_back(rr.kinetic_J[k] + rr.potential_J[k] - rr.initial_energy_J);
-  {  // the reference against itself, through the same measurement as every yarn variant
+  if (c.reference_from) {
+    FidelityReference stored = read_fidelity_reference(*c.reference_from, fidelity_reference_key(c));
+    ref = std::move(stored.frames);
+    out.rows.push_back(stored.row);
+    if (c.progress)
+      std::fprintf(stderr, "fidelity: reference %s read from %s\n", p.reference.name.c_str(),
+                   c.reference_from->string().c_str());
+  } else {
+    rec.on_frame = [&](const Frame& f) {
+      const DataArray &u = point_array(f, "u"), &v = point_array(f, "v");
+      std::vector<Vec2> uv;
+      for (Eigen::Index n = 0; n < f.points.rows(); ++n) uv.emplace_back(u.values[n], v.values[n]);
+      ref.x.push_back(f.points);
+      ref.uv.push_back(std::move(uv));
+    };
+    if (c.progress) std::fprintf(stderr, "fidelity: reference %s\n", p.reference.name.c_str());
+    const Scene& rs = p.reference.variant.scene;
+    const RecordedRun rr = timed_runs(rs, "yarn", rec, c.repeats);
+    if (rr.result.outcome != Outcome::ok)
+      throw std::runtime_error("the reference '" + p.reference.name + "' ended '" + to_string(rr.result.outcome) +
+                               "' at t = " + std::to_string(rr.end_time) + " s: " + rr.result.message);
+    for (size_t k = 0; k < rr.kinetic_J.size(); ++k)
+      ref.energy_change.push_back(rr.kinetic_J[k] + rr.potential_J[k] - rr.initial_energy_J);
+    // the reference against itself, through the same measurement as every yarn variant
     FidelityRow row = row_of(p.reference, rr);
     DistanceTally tally;
     for (size_t k = 0; k < ref.x.size(); ++k) tally.add_frame(crossing_distances(ref.x[k], ref.x[k]));
@@ -283,10 +282,12 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
                        ? ": above a tenth of the tolerance, distances that small do not measure a model difference"
                        : "");
     out.rows.push_back(row);
+    if (c.reference_only) write_fidelity_reference(c.out_dir, fidelity_reference_key(c), {ref, row});
   }
+  const long reference_steps = out.rows.front().steps;
 
   // 2. Every variant, measured frame by frame as it runs.
-  for (const PlannedVariant& pv : p.variants) {
+  for (const PlannedVariant& pv : c.reference_only ? std::vector<PlannedVariant>{} : p.variants) {
     const Scene& vs = pv.variant.scene;
     const bool continuum = pv.variant.model == "fem";
     std::unique_ptr<FemModel> geometry = continuum ? std::make_unique<FemModel>(vs) : nullptr;
@@ -303,7 +304,7 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
     if (c.progress) std::fprintf(stderr, "fidelity: %s (%s)\n", pv.name.c_str(), pv.variant.model.c_str());
     // A rung that runs away under error control shrinks its steps instead of
     // leaving its bounds: it stops at 20× the reference's steps (outcome max_steps).
-    const RecordedRun run = timed_runs(vs, pv.variant.model, vr, c.repeats, 20 * rr.stats.steps + 1000);
+    const RecordedRun run = timed_runs(vs, pv.variant.model, vr, c.repeats, 20 * reference_steps + 1000);
     FidelityRow row = row_of(pv, run);
     tally.fill(row, ref);
     row.energy_diff_J = max_energy_difference(run, ref);

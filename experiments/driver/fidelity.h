@@ -35,6 +35,11 @@ struct FidelityConfig {
   bool error_estimate = true;                       // each run's time error beside its distance
   std::filesystem::path out_dir;
   bool progress = true;
+  // A ladder split into jobs (experiments/fidelity/Snakefile): run only the
+  // reference and also write it to out_dir/reference.bin; or read the reference
+  // from that file in another folder instead of running it (fidelity_reference.h).
+  bool reference_only = false;
+  std::optional<std::filesystem::path> reference_from;
 };
 
 struct PlannedVariant {

@@ -29,7 +29,6 @@ Json fit_error_budget(const FitCommandConfig& c, const FitCommandPlan& p, const 
   Scene fitted = p.scene;
   for (const TrajectoryFitParameter& fp : r.parameters) set_scene_parameter(fitted, fp.key, fp.value);
   fitted.integrator = c.fit.integrator.empty() ? p.scene.integrator : c.fit.integrator;
-  fitted.adaptive = false;  // the fit steps at the scene's dt
   fitted.duration_s = p.target.back().time;
   RecordOptions rec;
   rec.step_ends = true;
@@ -72,6 +71,12 @@ Json fit_error_budget(const FitCommandConfig& c, const FitCommandPlan& p, const 
 FitCommandPlan plan_fit(const FitCommandConfig& c) {
   FitCommandPlan p;
   p.scene = load_scene(c.scene_path.string());
+  if (!c.resolution.scene) {
+    if (!c.fit.integrator.empty() && c.fit.integrator != "sdirk2")
+      throw TrajectoryFitError("--integrator: got '" + c.fit.integrator +
+                               "', the controlled resolution runs sdirk2 (use --resolution scene for another)");
+    p.scene = at_resolution(p.scene, c.resolution);
+  }
   if (!c.fem_params.empty()) {
     p.scene.fem.parameter_file = c.fem_params;
     (void)fem_material(p.scene);  // a bad file is exit 2 before anything runs
@@ -102,6 +107,7 @@ TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) 
   j.set("target", c.target_dir.string());
   j.set("model", c.fit.model);
   j.set("integrator", c.fit.integrator.empty() ? p.scene.integrator : c.fit.integrator);
+  j.set("resolution", c.resolution.describe());
   j.set("frames", static_cast<int>(p.target.size()));
   j.set("observed_points", r.observed_points);
   Json params = Json::array();

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "calibration/trajectory_fit.h"
+#include "experiments/driver/resolution.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -23,6 +24,9 @@ struct FitCommandConfig {
   std::filesystem::path scene_path, target_dir, out_dir;
   int frames = 0;          // the target's first N frames after t = 0; 0 = all
   std::string fem_params;  // replaces the scene's [fem] parameter_file when given
+  // The simulations' resolution (docs/models.md §7.11): by default the scene's
+  // integrator and step, as the published fit; controlled: sdirk2 under error control.
+  Resolution resolution{.scene = true};
   TrajectoryFitOptions fit;
 };
 

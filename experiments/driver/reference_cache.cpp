@@ -10,6 +10,7 @@
 
 #include "experiments/driver/experiment_meta.h"
 #include "experiments/output/atomic_file.h"
+#include "experiments/output/binary_io.h"
 
 namespace wl {
 
@@ -25,16 +26,6 @@ std::string reference_key(const std::string& scene_text, const std::string& mode
 namespace {
 
 constexpr char kMagic[8] = {'W', 'L', 'R', 'E', 'F', '0', '1', '\0'};
-
-template <class T>
-void put(std::string& out, const T& x) {
-  out.append(reinterpret_cast<const char*>(&x), sizeof(T));
-}
-
-template <class T>
-bool get(std::istream& in, T& x) {
-  return static_cast<bool>(in.read(reinterpret_cast<char*>(&x), sizeof(T)));
-}
 
 std::string format_g(double x) {
   char buf[32];

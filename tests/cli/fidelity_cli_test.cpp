@@ -61,6 +61,20 @@ TEST_F(FidelityCli, BadParameterFileIsRefused) {
   expect_refused("--fem-params '" + (dir_ / "params.toml").string() + "'", {"params.toml:1", "shear_N_per_m"});
 }
 
+TEST_F(FidelityCli, JobOptionsAreCheckedBeforeAnythingRuns) {
+  expect_refused("--reference-from '" + (dir_ / "nowhere").string() + "' --variants frozen_sliding",
+                 {"--reference-from", "nowhere", "cannot be read"});
+  expect_refused("--reference-only --variants frozen_sliding", {"--reference-only", "--variants"});
+  std::ofstream(dir_ / "reference.bin") << "not a reference";
+  expect_refused("--reference-from '" + dir_.path().string() + "'", {"reference.bin", "not a fidelity reference"});
+  // --list-variants names the planned rungs and writes nothing
+  const Result r = fidelity("--resolution scene --list-variants");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("frozen_sliding\n"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("full\n"), std::string::npos) << "the reference is not a rung: " << r.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
 TEST_F(FidelityCli, WritesTheLadderAndNamesTheCheapestVariant) {
   const Result r = fidelity("--variants frozen_sliding,fem_first_guess --tolerance 1 --repeats 2");
   ASSERT_EQ(r.exit_code, 0) << r.output;

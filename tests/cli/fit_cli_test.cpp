@@ -50,6 +50,30 @@ TEST_F(FitCli, RecoversTheShearModulusOfItsOwnRun) {
   EXPECT_NE(r.output.find("contact.shear_modulus_Pa = 1000"), std::string::npos) << r.output;  // the scene default
 }
 
+// At the controlled resolution both the target and the fitted runs are sdirk2
+// under error control, with other steps than each other: the fit finds the
+// shear modulus again to within what that tolerance allows.
+TEST_F(FitCli, RecoversTheShearModulusAtControlledResolution) {
+  const fs::path target = dir_ / "controlled_target";
+  const auto run = cli("run " + test::shell_quote(scene_.string()) + " --integrator sdirk2 --rtol 1e-6 --quiet --out " +
+                       test::shell_quote(target.string()));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const fs::path out = dir_ / "controlled_fit";
+  const auto r = cli("fit " + test::shell_quote(scene_.string()) + " --target " + test::shell_quote(target.string()) +
+                     " --resolution controlled --rtol 1e-6 --free contact.shear_modulus_Pa"
+                     " --start contact.shear_modulus_Pa=1500 --quiet --out " +
+                     test::shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::stringstream json;
+  json << std::ifstream(out / "fit.json").rdbuf();
+  EXPECT_NE(json.str().find("\"resolution\": \"sdirk2 under error control, rtol 1e-06"), std::string::npos)
+      << json.str();
+  const std::string key = "\"value\": ";
+  const size_t at = json.str().find(key, json.str().find("\"key\": \"contact.shear_modulus_Pa\""));
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NEAR(std::stod(json.str().substr(at + key.size())), 1000.0, 10.0);  // 1 %, from 50 % off
+}
+
 TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
   const fs::path out = dir_ / "never";
   const struct {
@@ -62,6 +86,8 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
       {"--free contact.shear_modulus_Pa --start contact.friction_coefficient=0.3", "not among the fitted keys"},
       {"--free contact.shear_modulus_Pa --integrator ida", "offers no parameter sensitivities"},
       {"--free contact.shear_modulus_Pa --model fem", "does not depend on it"},
+      {"--free contact.shear_modulus_Pa --resolution controlled --integrator be-linear", "runs sdirk2"},
+      {"--free contact.shear_modulus_Pa --resolution fine", "--resolution"},
   };
   for (const auto& c : cases) {
     const auto r = fit(c.args, out);

@@ -2,12 +2,14 @@
 // reference and its aliases measure zero, a term that does nothing measures at
 // round-off, a simplification that matters does not; the time rungs measure
 // their own time error against a controlled reference; a time error above the
-// tolerance is not within it; the plan refuses bad input.
+// tolerance is not within it; the plan refuses bad input; a ladder split into
+// jobs over a reference file gives the rows of one run bit for bit.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "experiments/driver/fidelity.h"
+#include "experiments/driver/fidelity_reference.h"
 #include "experiments/driver/recorded_run.h"
 #include "models/model_factory.h"
 
@@ -126,6 +128,66 @@ TEST_F(Fidelity, ContinuumIsMeasuredAtTheCrossingsMaterialPoints) {
   EXPECT_EQ(x.model, "fem");
   EXPECT_EQ(x.compared_fraction, 1.0);
   EXPECT_LT(x.max_m, 1e-12);
+}
+
+TEST_F(Fidelity, ALadderSplitIntoJobsGivesTheRowsOfOneRunBitForBit) {
+  // One process: the reference and both rungs (a yarn rung and a continuum rung).
+  FidelityConfig whole = config(sliding_in_wind(), {"frozen_sliding", "fem_first_guess"});
+  const FidelityResult serial = run_fidelity(whole, plan_fidelity(whole));
+  ASSERT_EQ(serial.rows.size(), 3u);
+
+  // Jobs: the reference into a file, then each rung in its own folder against it.
+  FidelityConfig reference = config(sliding_in_wind(), {});
+  reference.out_dir = dir_ / "reference";
+  reference.reference_only = true;
+  const FidelityResult ref = run_fidelity(reference, plan_fidelity(reference));
+  ASSERT_EQ(ref.rows.size(), 1u);
+  ASSERT_TRUE(fs::exists(dir_ / "reference" / "reference.bin"));
+  for (size_t i = 1; i < serial.rows.size(); ++i) {
+    const FidelityRow& a = serial.rows[i];
+    SCOPED_TRACE(a.variant);
+    FidelityConfig rung = config(sliding_in_wind(), {a.variant});
+    rung.out_dir = dir_ / a.variant;
+    rung.reference_from = dir_ / "reference";
+    const FidelityResult job = run_fidelity(rung, plan_fidelity(rung));
+    ASSERT_EQ(job.rows.size(), 2u);
+    EXPECT_EQ(job.rows[0].steps, ref.rows[0].steps);  // the reference row travels with the file
+    const FidelityRow& b = job.rows[1];
+    EXPECT_EQ(b.variant, a.variant);
+    EXPECT_EQ(b.outcome, "ok");
+    EXPECT_EQ(b.steps, a.steps);
+    EXPECT_EQ(b.compared_fraction, a.compared_fraction);
+    // bitwise: the file holds the reference's doubles as they were
+    EXPECT_EQ(b.rms_m, a.rms_m);
+    EXPECT_EQ(b.worst_frame_rms_m, a.worst_frame_rms_m);
+    EXPECT_EQ(b.max_m, a.max_m);
+    EXPECT_EQ(b.energy_diff_J, a.energy_diff_J);
+    EXPECT_GT(b.worst_frame_rms_m, 1e-6);  // a rung that differs, so equality means something
+  }
+}
+
+TEST_F(Fidelity, AReferenceFileOfAnotherSceneOrMissingIsRefused) {
+  FidelityConfig reference = config(sliding_in_wind(), {});
+  reference.out_dir = dir_ / "reference";
+  reference.reference_only = true;
+  run_fidelity(reference, plan_fidelity(reference));
+  auto refused = [&](const FidelityConfig& c, const std::string& expected) {
+    try {
+      read_fidelity_reference(*c.reference_from, fidelity_reference_key(c));
+      ADD_FAILURE() << "accepted; expected " << expected;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  FidelityConfig other = config(free_fall(), {"frozen_sliding"});
+  other.reference_from = dir_ / "reference";
+  refused(other, "written for another scene");
+  FidelityConfig same = config(sliding_in_wind(), {"frozen_sliding"});
+  same.resolution.scene = false;  // another resolution: other reference frames
+  same.reference_from = dir_ / "reference";
+  refused(same, "written for another scene");
+  same.reference_from = dir_ / "nowhere";
+  refused(same, "cannot be read");
 }
 
 TEST_F(Fidelity, DefaultLadderLeavesOutWhatTheSceneCannotHave) {

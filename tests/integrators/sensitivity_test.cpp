@@ -106,13 +106,17 @@ TEST(ForwardSensitivity, Sdirk2IsExactWithoutFrozenInputs) {
             1e-6);
 }
 
-// The shipped physics freezes F_n (Gong shear, friction) and F_u (friction) in
-// the Jacobians; the sensitivities inherit it (docs/models.md §9.3). Measured on
-// this scene: density, bending and S within 0.05 %, Y off by 35 %, μ by 4 %.
+// By default the shipped physics freezes F_n (Gong shear, friction) and F_u
+// (friction) in the Jacobians; the sensitivities inherit it (docs/models.md
+// §9.3, measured on this scene: density, bending and S within 0.05 %, Y off by
+// 35 %). Y's error is asserted from both sides: the frozen chain is what
+// time.exact_contact_jacobian exists to remove.
 TEST(ForwardSensitivity, FrozenContactForcesCostWhatTheDocsState) {
   const Scene s = hanging();
-  EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", kYarnKeys, 1e-3, 1e-5, {1e-3, 0.5, 1e-3, 1e-3}), 1.0);
-  EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", {kFrictionCoefficientKey}, 1e-3, 1e-5, {0.1}), 1.0);
+  EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", {kYarnKeys[0], kYarnKeys[2], kYarnKeys[3]}, 1e-3), 1e-3);
+  const double stretch = sensitivity_error(s, "yarn", "be-newton", {kYarnKeys[1]}, 1e-3);
+  EXPECT_GT(stretch, 0.1);
+  EXPECT_LT(stretch, 0.5);
 }
 
 // With time.exact_contact_jacobian the chain through F_n and F_u is in the
