@@ -13,7 +13,8 @@
 #     swing_17.toml, oblique_wind_17.toml and held_off_centre_17.toml (0.3 s),
 #     and the damped scene's whole 0.25 s, each at sdirk2 rtol 1e-4 (rtol 1e-5
 #     for the damped scene), the yarn level once per scene and the continuum
-#     with the first guess (hinges), the static and the dynamic fit, every
+#     with the first guess (hinges), the static and the dynamic fit, and the
+#     static fit with the yarn level's node masses ([fem] yarn_node_mass), every
 #     distance beside both runs' time errors (experiments/compare.py).
 # Writes results/dynamic_calibration/ (OUT): the runs, fit/, summary.csv, summary.md and
 # validation.png (experiments/validation_table.py).
@@ -32,9 +33,12 @@ tests=uniaxial-warp,uniaxial-weft,biaxial,shear,bending-warp,bending-weft,bendin
 [ -f "$static" ] || build/weavelab calibrate experiments/scenes/hanging_wind.toml --grid-line-bending --starts 1 \
   --tests "$tests" --quiet --out "$(dirname "$static")"
 
-# Each scene with the grid-line law switched on (the first guess runs the scene as shipped: hinges).
+# Each scene with the grid-line law switched on (the first guess runs the scene as shipped: hinges),
+# and with the yarn level's node masses as well.
+mkdir -p "$out/scenes_mass"
 for s in hanging_wind_damped hanging_wind swing_17 oblique_wind_17 held_off_centre_17; do
   { cat "experiments/scenes/$s.toml"; printf '\n[fem]\ngrid_line_bending = true\n'; } > "$out/scenes/$s.toml"
+  { cat "$out/scenes/$s.toml"; printf 'yarn_node_mass = true\n'; } > "$out/scenes_mass/$s.toml"
 done
 
 run() {  # run OUT_DIR SCENE ARGS...: reused when OUT_DIR/summary.json exists
@@ -61,11 +65,12 @@ for spec in hanging_wind_damped:0.25:1e-5 hanging_wind:0.5:1e-4 swing_17:0.3:1e-
   [ "$s" = hanging_wind_damped ] && yarn=$out/target
   run "$yarn" "$out/scenes/$s.toml" --model yarn --integrator sdirk2 --rtol "$rtol" --duration "$duration"
   pairs+=("$s=$yarn")
-  for kind in first_guess static dynamic; do
+  for kind in first_guess static dynamic yarnmass; do
     scene=$out/scenes/$s.toml params=()
     case $kind in
       first_guess) scene=experiments/scenes/$s.toml ;;
       static) params=(--fem-params "$static") ;;
+      yarnmass) scene=$out/scenes_mass/$s.toml params=(--fem-params "$static") ;;
       dynamic) params=(--fem-params "$out/fit/params.toml") ;;
     esac
     run "$out/fem_${kind}_$s" "$scene" --model fem "${params[@]}" --integrator sdirk2 --rtol "$rtol" --duration "$duration"

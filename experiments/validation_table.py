@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """The validation table and chart of experiments/dynamic_calibration.sh: for
-each scene and continuum (first guess, static fit, dynamic fit), the mean and
+each scene and continuum (first guess, static fit, dynamic fit, static fit with
+the yarn level's node masses), the mean and
 worst per-frame RMS distance to the yarn level beside both runs' estimated
 time errors (summary.json "time_error", docs/models.md §7.8), and the
 distance against time.
@@ -21,7 +22,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import weavelab_io as wio  # noqa: E402
 
 KINDS = [("first_guess", "first guess (hinges)"), ("static", "static fit (grid lines)"),
-         ("dynamic", "dynamic fit (grid lines)")]
+         ("dynamic", "dynamic fit (grid lines)"), ("yarnmass", "static fit, yarn node mass")]
 
 
 def mean_time_error(run):

@@ -36,6 +36,20 @@ std::string format(double x) {
 
 }  // namespace
 
+// m(i, j) = L/2 · (ρ_warp(j)·n_i + ρ_weft(i)·n_j), n_i, n_j the yarn segments at the crossing along
+// its warp and its weft (1 on the border, 2 inside): half of each segment's mass, as the yarn
+// level's segments lump (docs/models.md §6.6). Index i + wefts·j, the grid mesh's at stride 1.
+std::vector<double> yarn_node_masses(const Scene& s) {
+  const int nu = s.nodes_u(), nv = s.nodes_v();
+  std::vector<double> m(static_cast<size_t>(nu) * nv);
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const int ni = (i > 0) + (i + 1 < nu), nj = (j > 0) + (j + 1 < nv);
+      m[i + nu * j] = 0.5 * s.spacing_m * (s.warp_type(j).density_kg_per_m * ni + s.weft_type(i).density_kg_per_m * nj);
+    }
+  return m;
+}
+
 FemModel::FemModel(const Scene& scene) : FemModel(scene, make_fem_mesh(scene), fem_material(scene)) {}
 
 FemModel::FemModel(const Scene& scene, FemMesh mesh, const FemMaterial& material)
@@ -60,15 +74,34 @@ void FemModel::build() {
   }
   hinges_ = interior_hinges(mesh_);
 
-  // Mass: always present (no other inertia in the FEM), lumped ρ_A·A/3 per vertex.
+  // Mass: always present (no other inertia in the FEM), lumped (docs/models.md §6.6): ρ_A·A/3 per
+  // vertex and triangle, or with [fem] yarn_node_mass the total ρ_A·ΣA shared in the proportions of
+  // the yarn level's node masses, each vertex's share split evenly over its triangles.
   vertex_mass_.assign(nv, 0.0);
   {
+    std::vector<double> share;  // yarn_node_mass: each vertex's mass per incident triangle [kg]
+    if (scene_.fem.yarn_node_mass) {
+      const std::vector<double> yarn = yarn_node_masses(scene_);
+      double area = 0, yarn_total = 0;
+      for (const TriangleRest& r : rest) area += r.area;
+      for (double m : yarn) yarn_total += m;
+      std::vector<int> incident(nv, 0);
+      for (const auto& tri : mesh_.triangles)
+        for (int v : tri) ++incident[v];
+      share.resize(nv);
+      for (int v = 0; v < nv; ++v)
+        share[v] = material_.areal_density_kg_per_m2 * area * yarn[v] / yarn_total / incident[v];
+    }
     auto t = std::make_unique<LumpedMassTerm>();
     for (int e = 0; e < nt; ++e) {
-      const double m = material_.areal_density_kg_per_m2 * rest[e].area;
-      t->add(triangle_stencil(mesh_.triangles[e]), m);
+      const auto& tri = mesh_.triangles[e];
+      const double third = material_.areal_density_kg_per_m2 * rest[e].area / 3.0;
+      const std::array<double, 3> m = share.empty()
+                                          ? std::array<double, 3>{third, third, third}
+                                          : std::array<double, 3>{share[tri[0]], share[tri[1]], share[tri[2]]};
+      t->add(triangle_stencil(tri), m);
       t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
-      for (int v : mesh_.triangles[e]) vertex_mass_[v] += m / 3.0;
+      for (int k = 0; k < 3; ++k) vertex_mass_[tri[k]] += m[k];
     }
     terms_.push_back(std::move(t));
   }
@@ -305,6 +338,8 @@ std::map<std::string, std::string> FemModel::describe() const {
     terms << (terms.tellp() > 0 ? ", " : "") << t->name() << " (" << t->num_elements() << ")";
   m["terms"] = terms.str();
   m["matrix_nonzeros"] = std::to_string(pattern().nonZeros());
+  m["mass"] = scene_.fem.yarn_node_mass ? "lumped in the proportions of the yarn level's node masses"
+                                        : "lumped, a third of each triangle's per vertex";
   const FemMaterial& p = material_;
   m["fem_parameters"] =
       "areal_density_kg_per_m2=" + format(p.areal_density_kg_per_m2) +

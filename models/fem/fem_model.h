@@ -6,7 +6,8 @@
 //   wind     → WindTerm (models/common, as the yarn model, per triangle)
 //   handles  → HandleSpringTerm (models/common) at the handle's vertex
 // The lumped mass (LumpedMassTerm) is always present: the FEM has no other
-// inertia, so terms.inertia does not apply; mass is constant.
+// inertia, so terms.inertia does not apply; mass is constant. Its vertex
+// shares are a third of each triangle's, or follow the yarn level's node masses.
 // Pins and handles (crossing (i, j)) map to the vertex at material (iL, jL).
 // Scenes validate that, with stride > 1, they lie on the stride lattice, so a
 // grid mesh always has that vertex; a mesh file uses the nearest vertex in UV
@@ -23,6 +24,10 @@
 #include "models/scene/scene.h"
 
 namespace wl {
+
+// The yarn level's lumped node masses at every crossing (index i + wefts·j) [kg]: half of each
+// yarn segment at the crossing, warp and weft ([fem] yarn_node_mass, docs/models.md §6.6).
+std::vector<double> yarn_node_masses(const Scene& scene);
 
 class FemModel : public TermModel {
  public:

@@ -51,8 +51,9 @@
 //     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m,
 //     diagonal_bending_N_m
 //       optional numbers > 0
-//     border_strip, grid_line_bending   optional booleans (default false); grid_line_bending
-//       needs the grid mesh (no mesh_file) (absent = computed / taken from parameter_file)
+//     border_strip, grid_line_bending, yarn_node_mass   optional booleans (default false); grid_line_bending
+//       needs the grid mesh (no mesh_file), yarn_node_mass also stride 1
+//       (absent = computed / taken from parameter_file)
 //
 //   [[obstacles]]  rigid obstacles (obstacle_reader.cpp, docs/models.md §3.11):
 //     shape = "plane" | "sphere" | "box" | "cylinder" | "disk"   (required)
@@ -275,6 +276,10 @@ void read_fem(TableReader& top, Scene& s) {
   f->read_bool("grid_line_bending", fem.grid_line_bending);
   if (fem.grid_line_bending && !fem.mesh_file.empty())
     f->fail_key("grid_line_bending", "false with a mesh_file (grid lines exist on the grid mesh only)", "true");
+  f->read_bool("yarn_node_mass", fem.yarn_node_mass);
+  if (fem.yarn_node_mass && (fem.stride != 1 || !fem.mesh_file.empty()))
+    f->fail_key("yarn_node_mass",
+                "false unless stride = 1 on the grid mesh (a vertex at every crossing, without mesh_file)", "true");
   f->read_number("areal_density_kg_per_m2", fem.areal_density_kg_per_m2, "a number > 0 (kg/m²)", positive);
   f->read_number("warp_stretch_N_per_m", fem.warp_stretch_N_per_m, "a number > 0 (N/m)", positive);
   f->read_number("weft_stretch_N_per_m", fem.weft_stretch_N_per_m, "a number > 0 (N/m)", positive);

@@ -58,6 +58,9 @@ struct FemSettings {
   std::optional<double> diagonal_bending_N_m;                // 45° hinges; absent: the mean of warp and weft
   bool border_strip = false;       // bars for the border yarns' outer half spacing (terms/border_stretch.h)
   bool grid_line_bending = false;  // bending of the grid lines instead of hinges (terms/grid_line_bending.h)
+  // Vertex masses in the proportions of the yarn level's node masses instead of a third of each
+  // triangle's (docs/models.md §6.6); stride 1 on the grid mesh only.
+  bool yarn_node_mass = false;
 };
 
 // A rigid obstacle (docs/models.md §3.11.1). Its body frame is placed at

@@ -9,6 +9,7 @@
 
 #include "integrators/backward_euler.h"
 #include "models/fem/fem_model.h"
+#include "models/model_factory.h"
 #include "models/scene/scene.h"
 #include "tests/fem/fem_test_scene.h"
 
@@ -141,6 +142,45 @@ TEST(FemModel, MassIsArealDensityTimesArea) {
   for (int i = 0; i < m.mesh().num_vertices(); ++i) ones[3 * i] = 1.0;
   EXPECT_NEAR(ones.dot(ev.mass * ones), rho_a * area, 1e-15);
   EXPECT_FALSE(m.mass_depends_on_q());
+}
+
+// [fem] yarn_node_mass: the total stays ρ_A·A, shared in the proportions of the
+// yarn level's own lumped node masses (two yarn types, so warps and wefts differ;
+// the border carries 3/4 and the corners 1/2 of an interior crossing's yarn, where
+// a third of each triangle gives them 1/2 and 1/4). The yarn level's masses are read
+// from its assembled mass matrix (sliding frozen: 3 DoFs per node), row by row.
+TEST(FemModel, YarnNodeMassFollowsTheYarnLevelsNodeMasses) {
+  Scene s = test::fem_scene(5, 4);
+  s.yarn_types["heavy"] = YarnType{0.005, 5e5, 1.4e-4};
+  s.warp_yarn_types = {"default", "heavy"};
+  s.weft_yarn_types = {"heavy", "default", "default"};
+  s.sliding = false;
+  s.gravity_m_per_s2 = {0, 0, -9.81};
+  const std::vector<double> expected = yarn_node_masses(s);
+  {
+    auto yarn = make_model(s, "yarn");
+    Evaluation ev;
+    allocate_evaluation(*yarn, ev);
+    yarn->evaluate(0.0, yarn->initial_q(), yarn->initial_v(), kMass, ev);
+    ASSERT_EQ(yarn->num_dofs(), 3 * static_cast<int>(expected.size()));
+    const Vec rows = ev.mass * Vec::Ones(yarn->num_dofs());
+    for (size_t n = 0; n < expected.size(); ++n) EXPECT_NEAR(rows[3 * n], expected[n], 1e-15) << "node " << n;
+  }
+  s.fem.yarn_node_mass = true;
+  FemModel m(s);
+  const double area = 4e-3 * 3e-3, total = m.material().areal_density_kg_per_m2 * area;
+  double yarn_total = 0;
+  for (double x : expected) yarn_total += x;
+  const std::vector<double>& mass = m.vertex_mass();
+  const Vec f = force(m, m.initial_q());
+  double sum = 0;
+  for (size_t n = 0; n < mass.size(); ++n) {
+    EXPECT_NEAR(mass[n], total * expected[n] / yarn_total, 1e-15) << "vertex " << n;
+    EXPECT_NEAR(f[3 * n + 2], -9.81 * mass[n], 1e-14) << "gravity at vertex " << n;
+    sum += mass[n];
+  }
+  EXPECT_NEAR(sum, total, 1e-15);
+  EXPECT_NEAR(mass[0] / mass[6], 0.5, 1e-12);  // corner (0, 0) against interior (1, 1): same yarns, half
 }
 
 TEST(FemModel, GravityPullsWithTotalMass) {

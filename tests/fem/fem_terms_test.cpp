@@ -344,14 +344,16 @@ TEST(BorderStretchTerm, UniformStretchCarriesHalfASpacingOfMembraneForce) {
   EXPECT_NEAR(f[3], -200.0 * 5e-4 * 0.01, 1e-12);
 }
 
-TEST(LumpedMassTerm, ThirdOfTriangleMassPerVertex) {
+TEST(LumpedMassTerm, EachVertexGetsItsShareOnTheDiagonal) {
   LumpedMassTerm t;
-  t.add(iota9(), 0.3);
+  t.add(iota9(), {0.1, 0.2, 0.05});
   const std::vector<double> q(9, 0.0), v(9, 0.0);
   Eigen::Matrix<double, 9, 1> f = Eigen::Matrix<double, 9, 1>::Zero();
   Eigen::Matrix<double, 9, 9> m = Eigen::Matrix<double, 9, 9>::Zero();
   t.evaluate(0, q.data(), v.data(), {f.data(), nullptr, nullptr, m.data()});
-  EXPECT_NEAR((m - 0.1 * Eigen::Matrix<double, 9, 9>::Identity()).norm(), 0.0, 1e-15);
+  Eigen::Matrix<double, 9, 1> expected;
+  expected << 0.1, 0.1, 0.1, 0.2, 0.2, 0.2, 0.05, 0.05, 0.05;
+  EXPECT_NEAR((m - Eigen::Matrix<double, 9, 9>(expected.asDiagonal())).norm(), 0.0, 1e-15);
   EXPECT_EQ(f.norm(), 0.0);
   auto r = test::check_element(t, 0, triangle_states());
   EXPECT_TRUE(r.ok) << r.detail;

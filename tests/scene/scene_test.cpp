@@ -308,6 +308,19 @@ TEST(SceneFiles, GridLineBendingNeedsTheGridMesh) {
   fs::remove_all(dir);
 }
 
+TEST(SceneText, YarnNodeMassNeedsAVertexAtEveryCrossing) {
+  EXPECT_TRUE(parse_scene("[fem]\nyarn_node_mass = true\n", "y.toml").fem.yarn_node_mass);
+  EXPECT_FALSE(FemSettings{}.yarn_node_mass);  // off by default
+  try {
+    parse_scene("[cloth]\nwarps = 5\nwefts = 5\n[fem]\nstride = 2\nyarn_node_mass = true\n", "y.toml");
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key, "fem.yarn_node_mass");
+    EXPECT_EQ(e.line, 6);
+    EXPECT_NE(e.expected.find("stride = 1"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SceneFiles, FemPathsResolveAgainstTheSceneDirectory) {
   const fs::path dir = fs::path(::testing::TempDir()) / "scene_fem_paths";
   fs::create_directories(dir / "meshes");

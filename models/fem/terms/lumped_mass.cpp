@@ -2,13 +2,15 @@
 
 namespace wl {
 
-void LumpedMassTerm::add(const std::array<int, 9>& stencil, double triangle_mass_kg) {
+void LumpedMassTerm::add(const std::array<int, 9>& stencil, const std::array<double, 3>& vertex_mass_kg) {
   stencils_.push_back(stencil);
-  mass_.push_back(triangle_mass_kg);
+  mass_.push_back(vertex_mass_kg);
 }
 
 void LumpedMassTerm::evaluate(int e, const double*, const double*, const ElementOutput& out) const {
-  if (out.mass) MatMap(out.mass).diagonal().setConstant(mass_[e] / 3.0);
+  if (!out.mass) return;
+  auto m = MatMap(out.mass);
+  for (int k = 0; k < 3; ++k) m.diagonal().segment<3>(3 * k).setConstant(mass_[e][k]);
 }
 
 }  // namespace wl

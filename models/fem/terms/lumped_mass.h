@@ -1,7 +1,9 @@
-// Lumped mass of a triangle [not in the sources; standard] (docs/models.md §6.6): the constant diagonal
-// block m/3·I₃ per vertex, m = ρ_A·A (areal density × rest area). No force.
+// Lumped mass of a triangle [not in the sources; standard] (docs/models.md §6.6): a constant diagonal
+// block m_k·I₃ per vertex k. By default m_k = ρ_A·A/3 (areal density × rest area, a third each);
+// with [fem] yarn_node_mass each vertex's share follows the yarn level's node masses. No force.
 // The FEM mass matrix is constant (FemModel::mass_depends_on_q() is false).
 #pragma once
+#include <array>
 #include <vector>
 
 #include "models/core/term.h"
@@ -13,13 +15,13 @@ class LumpedMassTerm : public ProportionalParameterTerm<9> {
   std::string name() const override { return "fem-mass"; }
   std::unique_ptr<Term> clone() const override { return std::make_unique<LumpedMassTerm>(*this); }
   bool provides_mass() const override { return true; }
-  // triangle_mass_kg = ρ_A·A; each vertex receives a third.
-  void add(const std::array<int, 9>& stencil, double triangle_mass_kg);
+  // The mass each of the triangle's three vertices receives from it [kg] (all ∝ ρ_A).
+  void add(const std::array<int, 9>& stencil, const std::array<double, 3>& vertex_mass_kg);
   double energy(int, const double*) const override { return 0.0; }
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
  private:
-  std::vector<double> mass_;
+  std::vector<std::array<double, 3>> mass_;
 };
 
 }  // namespace wl
