@@ -6,16 +6,26 @@
 # the continuum's warp bending stiffness G [N·m] and weight per area W, as the
 # FEM model states them (`weavelab info --model fem`, with WL_FEM_PARAMS: the
 # parameters of a calibration, else those derived from the yarns, docs/models.md §6.7).
+# WL_FEM_LAW=grid_lines runs the continuum with grid-line bending and the yarn
+# level's node masses ([fem] grid_line_bending, yarn_node_mass; docs/models.md
+# §6.5.2, §6.6) on a copy of the scene. WL_OUT changes the folder.
 # Results under results/cantilever/: the two runs and bending_length.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=experiments/scenes/cantilever_ledge.toml
-out=results/cantilever
+out=${WL_OUT:-results/cantilever}
 python=/usr/bin/python3
 params=()
 if [ -n "${WL_FEM_PARAMS:-}" ]; then params=(--fem-params "$WL_FEM_PARAMS"); fi
 tools/setup.sh
 mkdir -p "$out"
+case ${WL_FEM_LAW:-hinges} in
+  hinges) ;;
+  grid_lines)
+    { cat "$scene"; printf '\n[fem]\ngrid_line_bending = true\nyarn_node_mass = true\n'; } >"$out/scene.toml"
+    scene=$out/scene.toml ;;
+  *) echo "cantilever.sh: WL_FEM_LAW: got '$WL_FEM_LAW', expected hinges or grid_lines" >&2; exit 2 ;;
+esac
 for model in yarn fem; do
   echo "== $model model" >&2
   extra=()

@@ -144,6 +144,8 @@ int main(int argc, char** argv) {
   auto* info = app.add_subcommand("info", "Print DoFs, nodes, terms and pattern of a scene's model");
   info->add_option("scene", info_scene, "Scene file (TOML)")->required();
   info->add_option("--model", info_model, "Model: " + joined(wl::model_names()))->capture_default_str();
+  std::string info_params;
+  info->add_option("--fem-params", info_params, "FEM parameter file (from `calibrate` or `fit`) for the continuum");
 
   ExperimentArgs wp_args;
   std::string wp_rtols, wp_ref_rtols, ref_dir = "results/reference";
@@ -341,6 +343,7 @@ int main(int argc, char** argv) {
   try {
     if (*info) {
       wl::Scene scene = wl::load_scene(info_scene);
+      if (!info_params.empty()) scene.fem.parameter_file = info_params;
       auto m = wl::make_model(scene, info_model);
       std::cout << "scene: " << info_scene << "\n";
       for (const auto& [k, v] : m->describe()) std::cout << k << ": " << v << "\n";

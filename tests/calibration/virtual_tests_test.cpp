@@ -97,6 +97,17 @@ TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
   }
 }
 
+TEST(VirtualTests, APatchOfASceneWithObstaclesTestsTheFabricAlone) {
+  // The cantilever's strip lies on a ledge; its fabric's patch is flat at z = 0, where the ledge's
+  // top is, and must not carry the ledge into the tests.
+  const Scene scene = load_scene(WEAVELAB_SOURCE_DIR "/experiments/scenes/cantilever_ledge.toml");
+  ASSERT_FALSE(scene.obstacles.empty());
+  const Scene patch = material_test_scene(scene, 7);
+  EXPECT_TRUE(patch.obstacles.empty());
+  const ResponseCurve c = run_yarn_test(patch, {TestKind::bending_warp, {10.0}});
+  EXPECT_TRUE(c.complete) << c.message;
+}
+
 TEST(VirtualTests, PatchSmallerThanThePatternIsRejected) {
   Scene s = hanging_wind();
   s.pattern.kind = Pattern::Kind::satin;  // 5-harness: needs 5 + 4

@@ -92,6 +92,20 @@ TEST_F(Cli, InfoReportsDofs) {
   EXPECT_NE(r.output.find("dofs: 1317"), std::string::npos) << r.output;
 }
 
+TEST_F(Cli, InfoReportsTheParametersOfAFemParameterFile) {
+  const fs::path params = dir_ / "params.toml";
+  std::ofstream(params) << "warp_bending_N_m = 3.5e-07\n";
+  const std::string info = std::string("info '") + WEAVELAB_SOURCE_DIR +
+                           "/experiments/scenes/hanging_wind.toml' --model fem --fem-params '" + params.string() + "'";
+  Result r = run_cli(info, dir_);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("warp_bending_N_m=3.5e-07"), std::string::npos) << r.output;
+  std::ofstream(params) << "colour = 2.0\n";
+  r = run_cli(info, dir_);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("key 'colour'"), std::string::npos) << r.output;
+}
+
 TEST_F(Cli, ShortRunWritesFramesMetricsAndSummary) {
   const fs::path out = dir_ / "out";
   Result r = run_cli(std::string("run '") + WEAVELAB_SOURCE_DIR +
