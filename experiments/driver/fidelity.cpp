@@ -286,8 +286,9 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   }
   const long reference_steps = out.rows.front().steps;
 
-  // 2. Every variant, measured frame by frame as it runs.
-  for (const PlannedVariant& pv : c.reference_only ? std::vector<PlannedVariant>{} : p.variants) {
+  // 2. Every variant, measured frame by frame as it runs (none after --reference-only).
+  const std::vector<PlannedVariant> none;
+  for (const PlannedVariant& pv : c.reference_only ? none : p.variants) {
     const Scene& vs = pv.variant.scene;
     const bool continuum = pv.variant.model == "fem";
     std::unique_ptr<FemModel> geometry = continuum ? std::make_unique<FemModel>(vs) : nullptr;
