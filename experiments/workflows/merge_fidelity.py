@@ -9,7 +9,8 @@ too, with its speed-up over the reference.
 
     /usr/bin/python3 experiments/workflows/merge_fidelity.py OUT REFERENCE_DIR RUNG_DIR...
 
-Files are written under a temporary name and renamed.
+Files are written under a temporary name and renamed. A missing or malformed
+job folder: a message naming it and exit 2, nothing written.
 """
 import csv
 import io
@@ -24,13 +25,21 @@ def write_atomically(path, text):
     os.replace(path + ".tmp", path)
 
 
+def fail(message):
+    print(f"merge_fidelity.py: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
 def read_part(folder):
-    with open(os.path.join(folder, "fidelity.json"), encoding="utf-8") as f:
-        summary = json.load(f)
-    with open(os.path.join(folder, "fidelity.csv"), newline="", encoding="utf-8") as f:
-        table = list(csv.reader(f))
-    if len(table) != len(summary["variants"]) + 1:
-        sys.exit(f"merge_fidelity.py: {folder}: fidelity.csv and fidelity.json hold different rows")
+    try:
+        with open(os.path.join(folder, "fidelity.json"), encoding="utf-8") as f:
+            summary = json.load(f)
+        with open(os.path.join(folder, "fidelity.csv"), newline="", encoding="utf-8") as f:
+            table = list(csv.reader(f))
+    except (OSError, ValueError) as e:
+        fail(f"{folder}: not the folder of a `weavelab fidelity` job ({e})")
+    if "variants" not in summary or len(table) != len(summary["variants"]) + 1:
+        fail(f"{folder}: fidelity.csv and fidelity.json hold different rows")
     return summary, table[0], table[1:]
 
 
@@ -69,9 +78,9 @@ def merge(reference_dir, rung_dirs):
     for folder in rung_dirs:
         part, part_header, part_table = read_part(folder)
         if part_header != header:
-            sys.exit(f"merge_fidelity.py: {folder}: columns {part_header} differ from {header}")
+            fail(f"{folder}: columns {part_header} differ from {header}")
         if part["scene_hash"] != summary["scene_hash"] or part["reference"] != summary["reference"]:
-            sys.exit(f"merge_fidelity.py: {folder}: another scene or reference than {reference_dir}")
+            fail(f"{folder}: another scene or reference than {reference_dir}")
         rows += part["variants"][1:]
         lines += part_table[1:]
         parts.append({"folder": folder, "wall_s": part["wall_s"]})
@@ -100,7 +109,8 @@ def merge(reference_dir, rung_dirs):
 
 def main():
     if len(sys.argv) < 3:
-        sys.exit(__doc__)
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
     out, reference_dir, rung_dirs = sys.argv[1], sys.argv[2], sys.argv[3:]
     summary, table = merge(reference_dir, rung_dirs)
     os.makedirs(out, exist_ok=True)

@@ -74,6 +74,16 @@ class MergeFidelity(unittest.TestCase):
         self.assertEqual(merged["cheapest_within_5_percent"]["variant"], "cheap_far")
         self.assertEqual(merged["wall_s"], 6.0)
 
+    def test_a_missing_job_folder_is_exit_2_and_writes_nothing(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            write_part(os.path.join(tmp, "reference"), [row("full", 1.0, 0.0)])
+            out = os.path.join(tmp, "out")
+            r = subprocess.run([sys.executable, MERGE, out, os.path.join(tmp, "reference"), os.path.join(tmp, "gone")],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertIn("gone", r.stderr)
+            self.assertFalse(os.path.exists(out))
+
 
 # Held at two top corners in the wind, friction off: the yarns slide, so freezing them matters.
 SCENE = """[cloth]
