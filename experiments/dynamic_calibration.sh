@@ -14,7 +14,8 @@
 #     and the damped scene's whole 0.25 s, each at sdirk2 rtol 1e-4 (rtol 1e-5
 #     for the damped scene), the yarn level once per scene and the continuum
 #     with the first guess (hinges), the static and the dynamic fit, and the
-#     static fit with the yarn level's node masses ([fem] yarn_node_mass), every
+#     static fit with the yarn level's node masses ([fem] yarn_node_mass), and
+#     that with its shear raised as the modes say (3b), every
 #     distance beside both runs' time errors (experiments/compare.py).
 # Writes results/dynamic_calibration/ (OUT): the runs, fit/, summary.csv, summary.md and
 # validation.png (experiments/validation_table.py).
@@ -56,6 +57,28 @@ if [ ! -f "$out/fit/params.toml" ]; then  # exit 1: the iteration cap reached, t
 fi
 $py experiments/plot_fit.py "$out/fit" >/dev/null
 
+# 3b. The trajectory cost along the shear stiffness alone (yarn node mass, the fit's 20 frames):
+# shear_scan.csv. And the static fit with its shear raised by (12.21 / 10.79)² = 1.28, the squared
+# ratio of the in-plane shear mode's frequency, yarn level against calibrated continuum
+# (`weavelab modes`, README "Modes").
+shear=$(sed -n 's/^shear_N_per_m = //p' "$static")
+sed "s/^shear_N_per_m = .*/shear_N_per_m = $($py -c "print($shear * 1.28)")/" "$static" > "$out/params_shear128.toml"
+if [ ! -f "$out/shear_scan.csv" ]; then
+  echo "shear_factor,rms_over_fitted_frames_m" > "$out/shear_scan.tmp"
+  for f in 0.95 1 1.05 1.1 1.15 1.2 1.25 1.3 1.35 1.4; do
+    sed "s/^shear_N_per_m = .*/shear_N_per_m = $($py -c "print($shear * $f)")/" "$static" > "$out/scan.toml"
+    build/weavelab run "$out/scenes_mass/hanging_wind_damped.toml" --model fem --fem-params "$out/scan.toml" \
+      --integrator sdirk2 --rtol 1e-5 --duration 0.2 --quiet --out "$out/scan_run"
+    $py experiments/compare.py "$out/target" "$out/scan_run" --out "$out/scan.csv" > /dev/null
+    $py -c "import csv, math, sys
+d = [float(r['rms_distance_m']) for r in csv.DictReader(open(sys.argv[1])) if 0 < float(r['time_s']) <= 0.2 + 1e-9]
+print(f'{sys.argv[2]},{math.sqrt(sum(x * x for x in d) / len(d)):.6g}')" "$out/scan.csv" "$f" >> "$out/shear_scan.tmp"
+  done
+  rm -rf "$out/scan_run" "$out/scan.toml" "$out/scan.csv"
+  mv "$out/shear_scan.tmp" "$out/shear_scan.csv"
+fi
+cat "$out/shear_scan.csv"
+
 # 4. Validation.
 pairs=()
 for spec in hanging_wind_damped:0.25:1e-5 hanging_wind:0.5:1e-4 swing_17:0.3:1e-4 oblique_wind_17:0.3:1e-4 \
@@ -65,12 +88,13 @@ for spec in hanging_wind_damped:0.25:1e-5 hanging_wind:0.5:1e-4 swing_17:0.3:1e-
   [ "$s" = hanging_wind_damped ] && yarn=$out/target
   run "$yarn" "$out/scenes/$s.toml" --model yarn --integrator sdirk2 --rtol "$rtol" --duration "$duration"
   pairs+=("$s=$yarn")
-  for kind in first_guess static dynamic yarnmass; do
+  for kind in first_guess static dynamic yarnmass shear128; do
     scene=$out/scenes/$s.toml params=()
     case $kind in
       first_guess) scene=experiments/scenes/$s.toml ;;
       static) params=(--fem-params "$static") ;;
       yarnmass) scene=$out/scenes_mass/$s.toml params=(--fem-params "$static") ;;
+      shear128) scene=$out/scenes_mass/$s.toml params=(--fem-params "$out/params_shear128.toml") ;;
       dynamic) params=(--fem-params "$out/fit/params.toml") ;;
     esac
     run "$out/fem_${kind}_$s" "$scene" --model fem "${params[@]}" --integrator sdirk2 --rtol "$rtol" --duration "$duration"
