@@ -58,21 +58,23 @@ fi
 $py experiments/plot_fit.py "$out/fit" >/dev/null
 
 # 3b. The trajectory cost along the shear stiffness alone (yarn node mass, the fit's 20 frames):
-# shear_scan.csv. And the static fit with its shear raised by (12.21 / 10.79)² = 1.28, the squared
+# shear_scan.csv, each RMS beside the scan run's and the target's time errors (mean RMS). And the static fit with its shear raised by (12.21 / 10.79)² = 1.28, the squared
 # ratio of the in-plane shear mode's frequency, yarn level against calibrated continuum
 # (`weavelab modes`, README "Modes").
 shear=$(sed -n 's/^shear_N_per_m = //p' "$static")
 sed "s/^shear_N_per_m = .*/shear_N_per_m = $($py -c "print($shear * 1.28)")/" "$static" > "$out/params_shear128.toml"
 if [ ! -f "$out/shear_scan.csv" ]; then
-  echo "shear_factor,rms_over_fitted_frames_m" > "$out/shear_scan.tmp"
+  echo "shear_factor,rms_over_fitted_frames_m,continuum_time_error_m,target_time_error_m" > "$out/shear_scan.tmp"
   for f in 0.95 1 1.05 1.1 1.15 1.2 1.25 1.3 1.35 1.4; do
     sed "s/^shear_N_per_m = .*/shear_N_per_m = $($py -c "print($shear * $f)")/" "$static" > "$out/scan.toml"
     build/weavelab run "$out/scenes_mass/hanging_wind_damped.toml" --model fem --fem-params "$out/scan.toml" \
-      --integrator sdirk2 --rtol 1e-5 --duration 0.2 --quiet --out "$out/scan_run"
+      --integrator sdirk2 --rtol 1e-5 --duration 0.2 --error-estimate --quiet --out "$out/scan_run"
     $py experiments/compare.py "$out/target" "$out/scan_run" --out "$out/scan.csv" > /dev/null
-    $py -c "import csv, math, sys
+    $py -c "import csv, json, math, sys
 d = [float(r['rms_distance_m']) for r in csv.DictReader(open(sys.argv[1])) if 0 < float(r['time_s']) <= 0.2 + 1e-9]
-print(f'{sys.argv[2]},{math.sqrt(sum(x * x for x in d) / len(d)):.6g}')" "$out/scan.csv" "$f" >> "$out/shear_scan.tmp"
+te = [json.load(open(run + '/summary.json'))['time_error']['mean_rms_m'] for run in sys.argv[3:]]
+print(f'{sys.argv[2]},{math.sqrt(sum(x * x for x in d) / len(d)):.6g},{te[0]:.3g},{te[1]:.3g}')" \
+      "$out/scan.csv" "$f" "$out/scan_run" "$out/target" >> "$out/shear_scan.tmp"
   done
   rm -rf "$out/scan_run" "$out/scan.toml" "$out/scan.csv"
   mv "$out/shear_scan.tmp" "$out/shear_scan.csv"
