@@ -124,6 +124,13 @@ std::vector<std::string> TermModel::parameter_keys() const {
   return keys;
 }
 
+std::string TermModel::term_counts() const {
+  std::string out;
+  for (const auto& t : terms_)
+    out += (out.empty() ? "" : ", ") + t->name() + " (" + std::to_string(t->num_elements()) + ")";
+  return out;
+}
+
 std::vector<std::string> TermModel::asymmetric_terms() const {
   std::vector<std::string> names;
   for (const auto& term : terms_)

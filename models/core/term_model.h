@@ -30,6 +30,8 @@ class TermModel : public Model {
   void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const override;
 
   const std::vector<std::unique_ptr<Term>>& terms() const { return terms_; }
+  // "name (elements), ..." over the terms, for describe().
+  std::string term_counts() const;
   // Per term name (terms of one name summed, in the order of terms()): the
   // potential energy and the power of the force at (t, q, v) [J, W]. The terms'
   // frozen inputs (contact normal forces) are taken at (t, q, v), or kept from

@@ -333,10 +333,7 @@ std::map<std::string, std::string> FemModel::describe() const {
   m["hinges"] = std::to_string(hinges_.size());
   m["dofs"] = std::to_string(num_dofs_);
   m["fixed_dofs"] = std::to_string(fixed_.size());
-  std::ostringstream terms;
-  for (const auto& t : terms_)
-    terms << (terms.tellp() > 0 ? ", " : "") << t->name() << " (" << t->num_elements() << ")";
-  m["terms"] = terms.str();
+  m["terms"] = term_counts();
   m["matrix_nonzeros"] = std::to_string(pattern().nonZeros());
   m["mass"] = scene_.fem.yarn_node_mass ? "lumped in the proportions of the yarn level's node masses"
                                         : "lumped, a third of each triangle's per vertex";

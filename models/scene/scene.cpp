@@ -14,7 +14,10 @@
 //     warp_yarn_types        non-empty array of yarn type names, cycled over the warps (j)
 //     weft_yarn_types        same, cycled over the wefts (i)
 //   [cloth.pattern]
-//     kind                   "plain" | "twill" | "satin"
+//     kind                   "plain" | "twill" | "satin" | "stockinette" | "garter" | "rib2x2"
+//     courses, wales         knits only: integers ≥ 2 and ≤ 1024; garter: courses even (its
+//                            tile is 2 courses); rib2x2: wales a multiple of 4
+//     course_spacing_m       knits only: loop height C > 0 (default 0.8·cloth.spacing_m, the loop width)
 //     over, under, shift     twill only: over, under ≥ 1; 0 < |shift| < over+under;
 //                            over+under ≤ min(warps, wefts)
 //     harness, step          satin only: 5 ≤ harness ≤ min(warps, wefts);
@@ -22,6 +25,9 @@
 //   [yarn_types.NAME]        one table per yarn type; every defined type must be used
 //     density_kg_per_m, stretch_modulus_Pa, bending_modulus_Pa   all > 0
 //     "default" is YarnType{} of scene.h unless defined here.
+//   [knit]                   knit scenes only (docs/models.md §11)
+//     roll_stiffness_N, stitch_length_stiffness_N   ≥ 0
+//   A knit scene takes no [[pins]], [[handles]], [wind], [fem] or [[obstacles]] (not supported yet).
 //   [contact]
 //     shear_model, friction_model      "gong" | "cirio"
 //     shear_modulus_Pa, friction_coefficient, friction_stiffness_N_per_m,
@@ -122,9 +128,29 @@ std::map<std::string, YarnTypeDef> read_yarn_types(TableReader& top) {
   return defs;
 }
 
+// Knit kinds: courses × wales loops that the pattern's tile (docs/models.md §11.2) must cover whole.
+void read_knit_pattern(TableReader& p, Scene& s, KnitPattern::Kind kind) {
+  KnitPattern k;
+  k.kind = kind;
+  const std::string count = "an integer ≥ 2 and ≤ 1024";
+  auto in_range = [](long long x) { return x >= 2 && x <= 1024; };
+  p.read_int("courses", k.courses, count, in_range);
+  p.read_int("wales", k.wales, count, in_range);
+  p.read_number("course_spacing_m", k.course_spacing_m, "a number > 0 (m)", positive);
+  p.finish("(for a knit kind)");
+  if (k.course_spacing_m == 0.0) k.course_spacing_m = 0.8 * s.spacing_m;
+  if (kind == KnitPattern::Kind::garter && k.courses % 2 != 0)
+    p.fail_key("courses", "an even number of courses (a garter tile is one knit and one purl course)",
+               std::to_string(k.courses));
+  if (kind == KnitPattern::Kind::rib2x2 && k.wales % 4 != 0)
+    p.fail_key("wales", "a multiple of 4 wales (a 2×2 rib tile is 2 knit and 2 purl wales)", std::to_string(k.wales));
+  s.knit = k;
+}
+
 void read_pattern(TableReader& p, Scene& s) {
   int kind = 0;
-  p.read_choice("kind", kind, {"plain", "twill", "satin"});
+  p.read_choice("kind", kind, {"plain", "twill", "satin", "stockinette", "garter", "rib2x2"});
+  if (kind >= 3) return read_knit_pattern(p, s, static_cast<KnitPattern::Kind>(kind - 3));
   Pattern& pat = s.pattern;
   pat.kind = static_cast<Pattern::Kind>(kind);
   const int grid = std::min(s.warps, s.wefts);
@@ -327,6 +353,30 @@ void read_boundary(TableReader& top, Scene& s) {
   }
 }
 
+// [knit] holds the knit-specific stiffnesses; a knit scene rejects the tables
+// the knit model does not support yet.
+void read_knit(TableReader& top, Scene& s) {
+  auto k = top.subtable("knit");
+  if (k && !s.knit) {
+    const auto first = k->table().begin();
+    const std::string expected =
+        "no [knit] table in a woven scene (it needs cloth.pattern.kind = \"stockinette\", "
+        "\"garter\" or \"rib2x2\")";
+    if (first == k->table().end()) top.source().fail(k->line(), "knit", "[knit]", expected);
+    k->fail_at(first->second, first->first.str(), expected);
+  }
+  if (k) {
+    k->read_number("roll_stiffness_N", s.knit->roll_stiffness_N, "a number ≥ 0 (N)", non_negative);
+    k->read_number("stitch_length_stiffness_N", s.knit->stitch_length_stiffness_N, "a number ≥ 0 (N)", non_negative);
+    k->finish();
+  }
+  if (!s.knit) return;
+  for (const char* table : {"pins", "handles", "wind", "fem", "obstacles"})
+    if (const toml::node* n = top.table().get(table))
+      top.source().fail(line_of(*n), table, "[" + std::string(table) + "]",
+                        "no [" + std::string(table) + "] in a knit scene (not supported for knits yet)");
+}
+
 void read_loads(TableReader& top, Scene& s) {
   if (auto g = top.subtable("gravity")) {
     g->read_vec3("acceleration_m_per_s2", s.gravity_m_per_s2, "an array of 3 numbers [x, y, z] (m/s²)");
@@ -418,10 +468,11 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   TableReader top(src, root, "");
   // Unknown tables first: a misspelt table name is the likeliest error.
   top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "damping", "time",
-               "terms", "fem", "obstacles", "obstacle_contact"});
+               "terms", "fem", "obstacles", "obstacle_contact", "knit"});
   top.finish();
   const auto yarn_defs = read_yarn_types(top);
   read_cloth(top, s, yarn_defs);
+  read_knit(top, s);
   read_contact(top, s);
   read_pose(top, s);
   read_fem(top, s);

@@ -23,6 +23,18 @@ struct Pattern {
   int satin_harness = 5, satin_step = 2;                 // N-harness satin, step k
 };
 
+// A weft-knitted cloth (docs/models.md §11): courses of loops, one yarn per
+// course, each loop (course r, wale c) pulled through the loop below it as a
+// knit or a purl stitch.
+struct KnitPattern {
+  enum class Kind { stockinette, garter, rib2x2 } kind = Kind::stockinette;
+  int courses = 8;                         // loop rows (yarns), ≥ 2; garter: even
+  int wales = 8;                           // loop columns, ≥ 2; rib2x2: a multiple of 4
+  double course_spacing_m = 0.0;           // C, loop height; 0: 0.8·cloth.spacing_m (the loop width W)
+  double roll_stiffness_N = 1e-5;          // k_t, V = ½ k_t L (ψ − ψ̄)² (docs/models.md §11.4)
+  double stitch_length_stiffness_N = 0.1;  // k_l, V = ½ k_l L (Δu/L − 1)² (docs/models.md §11.5)
+};
+
 struct ContactParams {
   enum class ShearModel { cirio, gong } shear_model = ShearModel::gong;
   enum class FrictionModel { gong, cirio } friction_model = FrictionModel::gong;
@@ -108,6 +120,10 @@ struct Scene {
   double radius_m = 5e-4;   // R
   bool sliding = true;      // false: u, v frozen, 3 DoFs per node
   Pattern pattern;
+  // Set when [cloth.pattern] names a knit: the cloth is knitted (models/knit);
+  // warps, wefts and the woven pattern are then unused, and the courses take
+  // their yarn types from warp_yarn_types (cycled over courses).
+  std::optional<KnitPattern> knit;
   // Yarn types by name; a scene file holds exactly the types its cloth uses
   // ("default" = YarnType{} when referenced but not defined).
   std::map<std::string, YarnType> yarn_types{{"default", YarnType{}}};

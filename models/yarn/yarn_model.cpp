@@ -511,10 +511,7 @@ std::map<std::string, std::string> YarnModel::describe() const {
   m["fixed_dofs"] = std::to_string(fixed_.size());
   m["pattern"] = pattern_name(scene_.pattern.kind);
   m["segments"] = std::to_string(segments_.size());
-  std::ostringstream terms;
-  for (const auto& t : terms_)
-    terms << (terms.tellp() > 0 ? ", " : "") << t->name() << " (" << t->num_elements() << ")";
-  m["terms"] = terms.str();
+  m["terms"] = term_counts();
   m["matrix_nonzeros"] = std::to_string(pattern().nonZeros());
   return m;
 }

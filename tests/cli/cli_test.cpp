@@ -183,6 +183,23 @@ TEST_F(Cli, BadObstaclesAreLocatedExit2) {
                   {"bad.toml:6", "obstacles[0]", "inside"});
 }
 
+// Knit scenes (docs/models.md §11): a knit key on a woven scene, a pattern
+// whose tile does not cover the counts, an unknown kind: exit 2, located,
+// nothing written; `info` describes a knit.
+TEST_F(Cli, BadKnitScenesAreLocatedExit2) {
+  expect_rejected("[cloth.pattern]\nkind = \"plain\"\n[knit]\nstitch_length_stiffness_N = 1\n",
+                  {"bad.toml:4", "knit.stitch_length_stiffness_N", "woven scene"});
+  expect_rejected("[cloth.pattern]\nkind = \"rib2x2\"\nwales = 10\n", {"bad.toml:3", "cloth.pattern.wales", "4"});
+  expect_rejected("[cloth.pattern]\nkind = \"seed\"\n", {"bad.toml:2", "cloth.pattern.kind", "garter"});
+}
+
+TEST_F(Cli, InfoDescribesAKnit) {
+  Result r = run_cli(std::string("info '") + WEAVELAB_SOURCE_DIR + "/experiments/scenes/knit_garter.toml'", dir_);
+  EXPECT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"pattern: garter", "stitch_contacts: 480", "stitch_roll", "rest_shape: 2 x 1 tile"})
+    EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+}
+
 // A state the model cannot represent is a named numerical outcome (exit 1) with
 // a complete record, not NaN or a runaway: without friction or parallel contact,
 // a strong pull along the yarns slides crossing (1, 1) past (2, 1) in one step.

@@ -264,6 +264,40 @@ TEST(SceneErrors, PatternsMustMakeSense) {
   expect_error("[cloth.pattern]\nkind = \"satin\"\nharness = 6\n", 1, "cloth.pattern.step", "gcd");
 }
 
+// Knit patterns (docs/models.md §11): the counts a pattern's tile must cover,
+// knit keys only on knit scenes, and the tables a knit scene does not take.
+TEST(SceneParse, KnitPatternsAndTheirKeys) {
+  const Scene s = parse_scene(
+      "[cloth.pattern]\nkind = \"rib2x2\"\ncourses = 5\nwales = 8\n[knit]\nroll_stiffness_N = 2e-5\n", "ok.toml");
+  ASSERT_TRUE(s.knit.has_value());
+  EXPECT_EQ(s.knit->kind, KnitPattern::Kind::rib2x2);
+  EXPECT_EQ(s.knit->courses, 5);
+  EXPECT_EQ(s.knit->wales, 8);
+  EXPECT_DOUBLE_EQ(s.knit->roll_stiffness_N, 2e-5);
+  EXPECT_DOUBLE_EQ(s.knit->course_spacing_m, 0.8 * s.spacing_m);
+  EXPECT_FALSE(parse_scene("[cloth.pattern]\nkind = \"plain\"\n", "ok.toml").knit.has_value());
+}
+
+TEST(SceneErrors, KnitPatternsMustTileAndKnitKeysNeedAKnit) {
+  struct Case {
+    std::string text;
+    int line;
+    std::string key, expected;
+  };
+  const std::string pattern = "[cloth.pattern]\nkind = ";
+  const std::vector<Case> cases = {
+      {pattern + "\"jersey\"\n", 2, "cloth.pattern.kind", "stockinette"},
+      {pattern + "\"garter\"\ncourses = 7\n", 3, "cloth.pattern.courses", "even"},
+      {pattern + "\"rib2x2\"\nwales = 6\n", 3, "cloth.pattern.wales", "multiple of 4"},
+      {pattern + "\"stockinette\"\ncourses = 1\n", 3, "cloth.pattern.courses", "≥ 2"},
+      {pattern + "\"plain\"\ncourses = 4\n", 3, "cloth.pattern.courses", "kind"},
+      {pattern + "\"twill\"\n[knit]\nroll_stiffness_N = 1e-5\n", 4, "knit.roll_stiffness_N", "woven scene"},
+      {pattern + "\"garter\"\n[knit]\nroll_stiffness_N = -1\n", 4, "knit.roll_stiffness_N", "≥ 0"},
+      {pattern + "\"stockinette\"\n[[pins]]\nnode = [0, 0]\n", 3, "pins", "knit scene"},
+  };
+  for (const Case& c : cases) expect_error(c.text, c.line, c.key, c.expected);
+}
+
 TEST(SceneErrors, CrossFieldTimeAndFemLimits) {
   expect_error("[time]\ndt_s = 0.01\noutput_interval_s = 0.005\n", 3, "time.output_interval_s", "≥ time.dt_s (= 0.01)");
   expect_error("[time]\ndt_s = 0.02\n", 2, "time.dt_s", "≤ time.output_interval_s");

@@ -1,0 +1,70 @@
+// The yarn-level knit model (docs/models.md §11): contact nodes with a position
+// and one sliding coordinate per yarn through them (knit_graph.h), the woven
+// model's segment kernels along each yarn's path (stretch, bending with a
+// straight rest shape, segment inertia, gravity, damping) and the knit terms
+// at every two-yarn stitch contact (stitch roll, stitch-length penalty).
+// The initial state is the relaxed tile of the pattern, tiled (knit_rest_shape.h).
+#pragma once
+#include <memory>
+#include <string>
+
+#include "models/core/term_model.h"
+#include "models/knit/knit_graph.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+// The loops' layout of a knit scene: its courses × wales, or with `tile` the
+// pattern's smallest repeating tile, periodic.
+KnitLayout knit_layout(const Scene& scene, bool tile);
+
+class KnitModel : public TermModel {
+ public:
+  // The whole cloth of a knit scene (scene.knit set), at the tiled rest shape.
+  explicit KnitModel(const Scene& scene);
+  // The pattern's periodic tile at the generated geometry with the terms the
+  // rest shape relaxes: stretch, bending and the stitch-length penalty (no
+  // roll, inertia, loads or damping; docs/models.md §11.3).
+  static std::unique_ptr<KnitModel> tile(const Scene& scene);
+
+  std::unique_ptr<Model> clone() const override { return std::make_unique<KnitModel>(*this); }
+  std::string name() const override { return "yarn"; }
+  bool mass_depends_on_q() const override { return scene_.sliding; }
+  Frame frame(double t, const Vec& q, const Vec& v) const override;
+  double max_node_speed(const Vec& v) const override;
+  // A yarn segment whose sliding coordinates meet or cross (Δu ≤ 0).
+  std::string invalid_state(const Vec& q) const override;
+  std::map<std::string, std::string> describe() const override;
+
+  const KnitGraph& graph() const { return graph_; }
+  // Position of node k in state q, and a coordinate (DoF or constant).
+  Vec3 position(const Vec& q, int k) const { return q.segment<3>(graph_.node(k).x_dof); }
+  double coordinate(const Vec& q, int index) const {
+    return is_dof(index) ? q[index] : constants_[constant_slot(index)];
+  }
+  // DoFs a static solve of the periodic tile holds: node 0's position and one
+  // coordinate per yarn (rigid translation and sliding a whole yarn along itself).
+  std::vector<int> gauge_dofs() const;
+
+ private:
+  KnitModel(const Scene& scene, bool tile);
+  void set_generated_state();
+  void apply_rest_shape();
+  void apply_pose();
+  void add_segment_terms();
+  void add_bending();
+  void add_stitch_terms();
+  struct Segment {
+    int yarn, k0, k1;  // visits
+    Vec3 dx0, dx1;     // image shifts of the two ends
+    double du1;        // coordinate shift of the second end
+  };
+
+  Scene scene_;
+  bool tile_;
+  KnitGraph graph_;
+  std::vector<Segment> segments_;
+  std::vector<std::vector<std::pair<int, int>>> visit_of_;  // per node, per slot: (yarn, visit)
+};
+
+}  // namespace wl
