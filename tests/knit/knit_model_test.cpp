@@ -95,7 +95,6 @@ TEST(KnitRestShape, TheTiledRestStateStaysStillInside) {
     EXPECT_LE(inside, bound) << kind;
     EXPECT_GT(edge, 1e3 * bound) << kind << ": the free edges are not in equilibrium";
     // Without the relaxation the inside is not at rest either.
-    Scene unrelaxed = s;
     const auto tile = KnitModel::tile(s);
     Evaluation te;
     allocate_evaluation(*tile, te);
