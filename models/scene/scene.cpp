@@ -15,7 +15,7 @@
 //     weft_yarn_types        same, cycled over the wefts (i)
 //   [cloth.pattern]
 //     kind                   "plain" | "twill" | "satin" | "stockinette" | "garter" | "rib2x2"
-//     courses, wales         knits only: integers ≥ 2 and ≤ 1024; garter: courses even (its
+//     courses, wales         knits only: integers ≥ 2 and ≤ 256; garter: courses even (its
 //                            tile is 2 courses); rib2x2: wales a multiple of 4
 //     course_spacing_m       knits only: loop height C > 0 (default 0.8·cloth.spacing_m, the loop width)
 //     over, under, shift     twill only: over, under ≥ 1; 0 < |shift| < over+under;
@@ -132,8 +132,9 @@ std::map<std::string, YarnTypeDef> read_yarn_types(TableReader& top) {
 void read_knit_pattern(TableReader& p, Scene& s, KnitPattern::Kind kind) {
   KnitPattern k;
   k.kind = kind;
-  const std::string count = "an integer ≥ 2 and ≤ 1024";
-  auto in_range = [](long long x) { return x >= 2 && x <= 1024; };
+  // ≤ 256: the run's memory check sizes woven cloths only; 256 × 256 loops are about 1.3 million DoFs.
+  const std::string count = "an integer ≥ 2 and ≤ 256";
+  auto in_range = [](long long x) { return x >= 2 && x <= 256; };
   p.read_int("courses", k.courses, count, in_range);
   p.read_int("wales", k.wales, count, in_range);
   p.read_number("course_spacing_m", k.course_spacing_m, "a number > 0 (m)", positive);

@@ -290,6 +290,7 @@ TEST(SceneErrors, KnitPatternsMustTileAndKnitKeysNeedAKnit) {
       {pattern + "\"garter\"\ncourses = 7\n", 3, "cloth.pattern.courses", "even"},
       {pattern + "\"rib2x2\"\nwales = 6\n", 3, "cloth.pattern.wales", "multiple of 4"},
       {pattern + "\"stockinette\"\ncourses = 1\n", 3, "cloth.pattern.courses", "≥ 2"},
+      {pattern + "\"stockinette\"\nwales = 257\n", 3, "cloth.pattern.wales", "≤ 256"},
       {pattern + "\"plain\"\ncourses = 4\n", 3, "cloth.pattern.courses", "kind"},
       {pattern + "\"twill\"\n[knit]\nroll_stiffness_N = 1e-5\n", 4, "knit.roll_stiffness_N", "woven scene"},
       {pattern + "\"garter\"\n[knit]\nroll_stiffness_N = -1\n", 4, "knit.roll_stiffness_N", "≥ 0"},
