@@ -266,7 +266,6 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
   Run best;
   double best_cost = std::numeric_limits<double>::infinity();
   for (int s = 0; s < num_starts; ++s) {
-    result.evaluations += evaluations[s];
     result.starts.push_back(outcomes[s]);
     if (outcomes[s].usable && outcomes[s].cost < best_cost) {
       best_cost = outcomes[s].cost;
@@ -274,6 +273,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     }
   }
   if (!best.problem) {
+    for (int e : evaluations) result.evaluations += e;
     result.message = "no start gave a usable solution: " + result.starts.front().message;
     result.material = base;
     return result;
@@ -287,6 +287,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
 
   // Weighted Jacobian, singular values and covariance of θ at the optimum.
   const OptimumStatistics stats = optimum_statistics(*best.problem, best.theta.data(), n);
+  for (int e : evaluations) result.evaluations += e;  // the statistics' evaluations of the best start included
   const Eigen::MatrixXd& J = stats.jacobian;
   const Eigen::MatrixXd& C = stats.covariance;
   result.singular_values = stats.singular_values;

@@ -14,7 +14,8 @@ Environment:
     WL_SPEED_REPEATS       runs per row and build (default 3)
     WL_CALIBRATION_STARTS  starts of the calibration row (default 4)
 
-Rows (default: all): yarn-17, fem-17, yarn-65, fem-65, fem-65-stride2, calibrate.
+Rows: yarn-17, fem-17, yarn-65, fem-65, fem-65-stride2 (the default, about 5 min
+with a reference), and calibrate (on request: a fit takes minutes per run).
 "One thread" is OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 OMP_THREAD_LIMIT=1: the
 thread limit holds CHOLMOD too, whose parallel loops name their own thread count.
 """
@@ -107,7 +108,7 @@ def main():
     tmp = tempfile.mkdtemp(prefix="speed_table_")
     try:
         rows = run_rows(tmp)
-        names = sys.argv[1:] or list(rows) + ["calibrate"]
+        names = sys.argv[1:] or list(rows)
         for n in names:
             if n not in rows and n != "calibrate":
                 fail(f"unknown row '{n}', expected one of {', '.join(list(rows) + ['calibrate'])}")
@@ -120,7 +121,8 @@ def main():
                 for label, b, env in builds:
                     samples[(n, label)].append(measure(b, row, env, tmp, starts))
                     w, c, _ = samples[(n, label)][-1]
-                    print(f"repeat {r + 1}/{repeats} {n:15s} {label:10s} wall {w:9.3f} cpu {c:9.3f}", file=sys.stderr)
+                    print(f"repeat {r + 1}/{repeats} {n:15s} {label:10s} wall {w:9.3f} cpu {c:9.3f}", file=sys.stderr,
+                          flush=True)
         report(names, rows, builds, samples, binary, reference, repeats, starts)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
