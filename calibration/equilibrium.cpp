@@ -42,7 +42,9 @@ EquilibriumResult EquilibriumSolver::solve(Vec& q, const EquilibriumOptions& opt
       return res;
     }
     const double tol = opt.rtol * held_norm(eval_.force) + opt.atol;
-    neg_k_ = -eval_.dfdq;
+    if (neg_k_.nonZeros() != eval_.dfdq.nonZeros()) neg_k_ = eval_.dfdq;  // the pattern, once
+    std::transform(eval_.dfdq.valuePtr(), eval_.dfdq.valuePtr() + eval_.dfdq.nonZeros(), neg_k_.valuePtr(),
+                   [](double k) { return -k; });
     const bool factored = solver_->factorize(neg_k_);
     if (res.residual <= tol) {
       res.converged = factored;

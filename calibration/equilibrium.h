@@ -42,6 +42,10 @@ class EquilibriumSolver {
   // After a converged solve the stiffness at q is factorized (solve_free()).
   EquilibriumResult solve(Vec& q, const EquilibriumOptions& options = {});
 
+  // Makes the next solve() what it is on a new solver for the same model and
+  // DoFs (the sparse solver restart()s), keeping the pattern work.
+  void restart() { solver_->restart(); }
+
   // Force and ∂f/∂q at the state of the last solve.
   const Evaluation& evaluation() const { return eval_; }
   // x = (−K_ff)⁻¹ b_f on the free DoFs (zero on the held DoFs), with the

@@ -3,15 +3,18 @@
 #include "calibration/optimum_statistics.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <numbers>
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include <ceres/ceres.h>
 #include <Eigen/SVD>
@@ -182,16 +185,24 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
   }
 
   FitResult result;
+  // The starts: the first guess, then seeded draws (in start order, so the seed fixes them).
+  const int num_starts = std::max(1, opt.starts);
   std::mt19937 rng(opt.seed);
   std::uniform_real_distribution<double> draw(-std::log(opt.start_spread), std::log(opt.start_spread));
-  Run best;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (int s = 0; s < std::max(1, opt.starts); ++s) {
-    Run run;
-    run.theta = theta0;
-    if (s > 0)
-      for (int k = 0; k < n; ++k) run.theta[k] = std::clamp(theta0[k] + draw(rng), lower[k], upper[k]);
-    StartOutcome outcome;
+  std::vector<std::vector<double>> start_theta(num_starts, theta0);
+  for (int s = 1; s < num_starts; ++s)
+    for (int k = 0; k < n; ++k) start_theta[s][k] = std::clamp(theta0[k] + draw(rng), lower[k], upper[k]);
+
+  // Each start is its own Ceres problem: they run concurrently, one thread per
+  // start up to the hardware's threads. Each start's path depends on nothing
+  // but its own evaluations, so the result is that of running them in order.
+  std::vector<Run> runs(num_starts);
+  std::vector<StartOutcome> outcomes(num_starts);
+  std::vector<int> evaluations(num_starts, 0);
+  auto solve_start = [&](int s) {
+    Run& run = runs[s];
+    run.theta = start_theta[s];
+    StartOutcome& outcome = outcomes[s];
     for (int k = 0; k < n; ++k) outcome.start.push_back(std::exp(run.theta[k]));
 
     ceres::Problem::Options popt;
@@ -202,10 +213,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
       ceres::LossFunction* loss = nullptr;
       if (opt.loss == "huber") loss = new ceres::HuberLoss(0.05);
       else if (opt.loss == "cauchy") loss = new ceres::CauchyLoss(0.05);
-      else if (opt.loss != "none")
-        throw std::invalid_argument("unknown loss '" + opt.loss + "', expected none, huber or cauchy");
-      run.problem->AddResidualBlock(new CurveCost(c, base, free, continuum, &result.evaluations), loss,
-                                    run.theta.data());
+      run.problem->AddResidualBlock(new CurveCost(c, base, free, continuum, &evaluations[s]), loss, run.theta.data());
     }
     for (int k = 0; k < n; ++k) {
       run.problem->SetParameterLowerBound(run.theta.data(), k, lower[k]);
@@ -217,12 +225,12 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     so.function_tolerance = 1e-16;
     so.gradient_tolerance = 1e-16;
     so.parameter_tolerance = 1e-14;
-    so.num_threads = 1;  // each curve evaluation already uses the assembly's threads
+    so.num_threads = 1;  // Ceres' threads would sum the curves' costs in a varying order
     so.logging_type = ceres::SILENT;
     Progress progress(s + 1);
     if (opt.progress) {
       so.callbacks.push_back(&progress);
-      std::fprintf(stderr, "  fit start %d of %d\n", s + 1, opt.starts);
+      std::fprintf(stderr, "  fit start %d of %d\n", s + 1, num_starts);
     }
     ceres::Solve(so, run.problem.get(), &run.summary);
     outcome.usable = run.summary.IsSolutionUsable();
@@ -230,13 +238,42 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     outcome.iterations = static_cast<int>(run.summary.iterations.size()) - 1;
     outcome.message = run.summary.message;
     for (int k = 0; k < n; ++k) outcome.value.push_back(std::exp(run.theta[k]));
-    result.starts.push_back(outcome);
-    if (outcome.usable && outcome.cost < best_cost) {
-      best_cost = outcome.cost;
-      best = std::move(run);
+  };
+  if (opt.loss != "none" && opt.loss != "huber" && opt.loss != "cauchy")
+    throw std::invalid_argument("unknown loss '" + opt.loss + "', expected none, huber or cauchy");
+  const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::thread::hardware_concurrency());
+  const int workers = std::min(num_starts, std::max(1, threads));
+  if (workers <= 1) {
+    for (int s = 0; s < num_starts; ++s) solve_start(s);
+  } else {
+    std::atomic<int> next{0};
+    std::vector<std::exception_ptr> errors(workers);
+    std::vector<std::thread> pool;
+    for (int w = 0; w < workers; ++w)
+      pool.emplace_back([&, w] {
+        try {
+          for (int s = next++; s < num_starts; s = next++) solve_start(s);
+        } catch (...) {
+          errors[w] = std::current_exception();
+          next = num_starts;
+        }
+      });
+    for (std::thread& t : pool) t.join();
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
+  }
+
+  Run best;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (int s = 0; s < num_starts; ++s) {
+    result.starts.push_back(outcomes[s]);
+    if (outcomes[s].usable && outcomes[s].cost < best_cost) {
+      best_cost = outcomes[s].cost;
+      best = std::move(runs[s]);
     }
   }
   if (!best.problem) {
+    for (int e : evaluations) result.evaluations += e;
     result.message = "no start gave a usable solution: " + result.starts.front().message;
     result.material = base;
     return result;
@@ -250,6 +287,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
 
   // Weighted Jacobian, singular values and covariance of θ at the optimum.
   const OptimumStatistics stats = optimum_statistics(*best.problem, best.theta.data(), n);
+  for (int e : evaluations) result.evaluations += e;  // the statistics' evaluations of the best start included
   const Eigen::MatrixXd& J = stats.jacobian;
   const Eigen::MatrixXd& C = stats.covariance;
   result.singular_values = stats.singular_values;

@@ -6,7 +6,7 @@
 // weighs the same whatever its units and the cost is ½ Σ_t (relative RMS_t)².
 // Jacobians are the exact IFT sensitivities of run_fem_test(). Several starts
 // (the first guess, then seeded log-uniform draws within ×/÷ spread) are run and
-// the best kept; their spread is reported. At the optimum: ceres::Covariance
+// the best kept (concurrently, one thread per start); their spread is reported. At the optimum: ceres::Covariance
 // (DENSE_SVD) scaled by the residual variance, correlations, the singular values
 // of the weighted Jacobian and the parameters it barely moves or that end on a bound.
 #pragma once
@@ -39,6 +39,7 @@ struct FitOptions {
   std::string loss = "none";  // "none", "huber", "cauchy" (scale 0.05: 5 % of a curve's range)
   int max_iterations = 100;
   bool progress = false;
+  int threads = 0;  // starts run at once (0: one per hardware thread); the result does not depend on it
 };
 
 struct FittedParameter {
@@ -77,6 +78,8 @@ struct FitResult {
 };
 
 // Continuum response of one test at material m (with sensitivities for `keys`, prefixed).
+// Called from several threads at once when there are several starts (one
+// thread per start): each call must depend on its arguments alone.
 using ContinuumTest =
     std::function<ResponseCurve(const FemMaterial& m, const TestSpec& test, const std::vector<std::string>& keys)>;
 

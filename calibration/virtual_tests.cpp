@@ -265,22 +265,45 @@ Vec3 PatchMap::derivative(int i, int j, double lambda) const {
   return rotated ? Vec3(test_rotation() * dx) : dx;
 }
 
+std::vector<int> crossing_dofs(const std::function<int(int, int)>& x_dof, int patch) {
+  std::vector<int> x(static_cast<size_t>(patch) * patch);
+  for (int j = 0; j < patch; ++j)
+    for (int i = 0; i < patch; ++i) x[i + patch * j] = x_dof(i, j);
+  return x;
+}
+
+// Held crossings: the outer ring; for bending the next ring too, so that the
+// edges are clamped in rotation as well (a ring held in position only lets the
+// rows relax like pinned beams, away from the cylinder).
+std::vector<int> held_crossings(const TestSpec& test, int patch) {
+  const int depth = clamps_rotation(test.kind) ? 2 : 1;
+  std::vector<int> ring;
+  for (int j = 0; j < patch; ++j)
+    for (int i = 0; i < patch; ++i)
+      if (std::min({i, j, patch - 1 - i, patch - 1 - j}) < depth) ring.push_back(i + patch * j);
+  return ring;
+}
+
+std::vector<int> held_dofs(const std::vector<int>& x_of, const TestSpec& test, int patch) {
+  std::vector<int> prescribed;
+  for (int n : held_crossings(test, patch))
+    for (int c = 0; c < 3; ++c) prescribed.push_back(x_of[n] + c);
+  return prescribed;
+}
+
 ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>& x_dof, const TestSpec& test,
                                 int patch, double L, const std::vector<std::string>& keys,
                                 const EquilibriumOptions& options) {
+  const std::vector<int> x_of = crossing_dofs(x_dof, patch);
+  EquilibriumSolver eq(model, held_dofs(x_of, test, patch));
+  return run_material_test(model, eq, x_of, test, patch, L, keys, options);
+}
+
+ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const std::vector<int>& x_of, const TestSpec& test,
+                                int patch, double L, const std::vector<std::string>& keys,
+                                const EquilibriumOptions& options) {
   const PatchMap map{test.kind, patch, L, 0.0, test.rotated};
-  // Held crossings: the outer ring; for bending the next ring too, so that the
-  // edges are clamped in rotation as well (a ring held in position only lets the
-  // rows relax like pinned beams, away from the cylinder).
-  const int depth = clamps_rotation(test.kind) ? 2 : 1;
-  std::vector<int> ring, prescribed;
-  for (int j = 0; j < patch; ++j)
-    for (int i = 0; i < patch; ++i)
-      if (std::min({i, j, patch - 1 - i, patch - 1 - j}) < depth) {
-        ring.push_back(i + patch * j);
-        for (int c = 0; c < 3; ++c) prescribed.push_back(x_dof(i, j) + c);
-      }
-  EquilibriumSolver eq(model, prescribed);
+  const std::vector<int> ring = held_crossings(test, patch);
   const double area = std::pow((patch - 1) * L, 2);
 
   ResponseCurve curve{test.kind, {}, true, "", {}};
@@ -293,7 +316,7 @@ ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>
     const Vec3 c0(0.5 * (patch - 1) * L, 0.5 * (patch - 1) * L, map.height_m);
     for (int j = 0; j < patch; ++j)
       for (int i = 0; i < patch; ++i) {
-        auto x = q.segment<3>(x_dof(i, j));
+        auto x = q.segment<3>(x_of[i + patch * j]);
         x = c0 + Q * (Vec3(x) - c0);
       }
   }
@@ -302,7 +325,7 @@ ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>
     // Every crossing moves with the map (the ring exactly, the interior as a first guess).
     for (int j = 0; j < patch; ++j)
       for (int i = 0; i < patch; ++i)
-        q.segment<3>(x_dof(i, j)) += map.position(i, j, lambda) - map.position(i, j, previous);
+        q.segment<3>(x_of[i + patch * j]) += map.position(i, j, lambda) - map.position(i, j, previous);
     previous = lambda;
     const EquilibriumResult r = eq.solve(q, options);
     if (!r.converged) {
@@ -317,7 +340,7 @@ ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>
       double w = 0.0;
       for (int n : ring) {
         const int i = n % patch, j = n / patch;
-        w -= f.segment<3>(x_dof(i, j)).dot(map.derivative(i, j, lambda));
+        w -= f.segment<3>(x_of[n]).dot(map.derivative(i, j, lambda));
       }
       return w / area;
     };

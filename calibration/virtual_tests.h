@@ -118,6 +118,16 @@ ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>
                                 int patch, double spacing_m, const std::vector<std::string>& parameter_keys = {},
                                 const EquilibriumOptions& options = {});
 
+// The DoF of x of every crossing (i, j) of a patch, at i + patch·j, and the
+// DoFs a test holds (the outer ring; two rings when it clamps rotation).
+std::vector<int> crossing_dofs(const std::function<int(int, int)>& x_dof, int patch);
+std::vector<int> held_dofs(const std::vector<int>& x_of, const TestSpec& test, int patch);
+// The same with an equilibrium solver made for held_dofs(x_of, test, patch)
+// on `model` (new, or restart()ed: the curve is then bitwise the same).
+ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const std::vector<int>& x_of, const TestSpec& test,
+                                int patch, double spacing_m, const std::vector<std::string>& parameter_keys = {},
+                                const EquilibriumOptions& options = {});
+
 // The same for the yarn and continuum models of a material test scene.
 ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const EquilibriumOptions& options = {});
 struct FemMaterial;

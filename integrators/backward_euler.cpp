@@ -14,6 +14,7 @@ void zero_fixed(Vec& x, const std::vector<int>& fixed) {
 void BackwardEuler::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
   bind(model, t0, q0, v0, opt);
   allocate_evaluation(model, ev_);
+  have_mass_ = false;
   a_ = model.pattern();
   solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs(), step_solver_options());
 }
@@ -29,7 +30,10 @@ void BackwardEuler::form_step_matrix(double h) {
 }
 
 StepResult BackwardEuler::step_linear(double h, int* iters) {
-  model_->evaluate(t_, q_, v_, kForce | kDfdq | kDfdv | kMass, ev_);
+  // A mass that does not depend on q (the continuum's) is assembled once: ev_.mass keeps it.
+  const bool mass_known = have_mass_ && !model_->mass_depends_on_q();
+  model_->evaluate(t_, q_, v_, kForce | kDfdq | kDfdv | (mass_known ? 0u : kMass), ev_);
+  have_mass_ = true;
   ++stats_.rhs_evals;
   ++stats_.jac_evals;
   form_step_matrix(h);

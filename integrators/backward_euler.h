@@ -52,7 +52,8 @@ class BackwardEuler : public Integrator {
   Evaluation ev_;
   SparseMatrix a_;
   std::unique_ptr<SparseSolver> solver_;
-  Vec rhs_, dv_;  // be-linear's right-hand side and solution, kept between steps
+  Vec rhs_, dv_;            // be-linear's right-hand side and solution, kept between steps
+  bool have_mass_ = false;  // ev_.mass holds M (be-linear: kept when M does not depend on q)
 };
 
 }  // namespace wl

@@ -10,20 +10,28 @@
 
 #include "integrators/gmres.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace wl {
 namespace {
 
 static_assert(std::is_same_v<std::int64_t, SuiteSparse_long>, "64-bit SuiteSparse interfaces expected");
 using Matrix64 = Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t>;
 
-// auto: UMFPACK's LU below this many free DoFs. gmres is already faster at
-// 1317 DoFs (17×17 hanging cloth: 0.8× UMFPACK's factor+solve, weavelab_bench
-// in one run); smaller systems, not measured, keep the direct solve.
-constexpr int kSmallSystem = 1000;
+// auto: UMFPACK's LU below this many free DoFs. gmres is faster down to the
+// smallest cloth measured (docs/design.md §11: the 9×9 yarn cloth, 341 DoFs,
+// 1.1–1.8 against 2.9–3.2 ms CPU per step; the 17×17 continuum, 867 DoFs, 3.1–5.0
+// against 4.9–5.5 ms); smaller systems, not measured, keep the direct solve.
+constexpr int kSmallSystem = 300;
 // auto: gmres for a measured ‖A − Aᵀ‖_F / ‖A‖_F below this.
 constexpr double kNearlySymmetric = 1e-3;
 // gmres: rebuild the preconditioner after a solve that took more Arnoldi
 // steps than this, or once it has served kMaxReuse matrices.
+// Measured on the 17×17 yarn cloth (docs/design.md §11): a fresh factor needs
+// 4.4 iterations, one a step old about 22; refreshing every step, or after up to
+// 5 or 8 matrices, was no faster.
 constexpr int kRefactorIterations = 10;
 constexpr int kMaxReuse = 3;
 constexpr int kGmresRestart = 40;
@@ -48,6 +56,59 @@ std::mutex& ordering_mutex() {
   return m;
 }
 
+// While alive, the OpenMP regions the calling thread opens run on that thread
+// alone (its max-active-levels ICV at 0; other threads keep theirs). CHOLMOD's
+// supernodal loops name their own thread count, so OMP_NUM_THREADS does not
+// hold them, and on small matrices waking the team costs more than the loops.
+class OneThreadRegions {
+ public:
+  explicit OneThreadRegions(bool active) {
+#ifdef _OPENMP
+    if (active) {
+      saved_ = omp_get_max_active_levels();
+      omp_set_max_active_levels(0);
+    }
+#endif
+  }
+  ~OneThreadRegions() {
+#ifdef _OPENMP
+    if (saved_ >= 0) omp_set_max_active_levels(saved_);
+#endif
+  }
+  OneThreadRegions(const OneThreadRegions&) = delete;
+  OneThreadRegions& operator=(const OneThreadRegions&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
+// CHOLMOD's LLᵀ whose solves reuse their workspace (cholmod_l_solve2): Eigen's
+// solve() allocates and frees the solution in every call, once per GMRES
+// iteration here. The same arithmetic as cholmod_l_solve.
+class Cholesky : public Eigen::CholmodDecomposition<Matrix64, Eigen::Lower> {
+ public:
+  Cholesky() = default;
+  Cholesky(const Cholesky&) = delete;
+  Cholesky& operator=(const Cholesky&) = delete;
+  ~Cholesky() {
+    for (cholmod_dense** d : {&x_, &y_, &e_}) cholmod_l_free_dense(d, &cholmod());
+  }
+  // x = L⁻ᵀL⁻¹ b (permuted as factorized); b and x of the matrix's size.
+  void solve_into(Eigen::Ref<const Vec> b, Eigen::Ref<Vec> x) {
+    cholmod_dense bd{};
+    bd.nrow = bd.nzmax = bd.d = static_cast<size_t>(b.size());
+    bd.ncol = 1;
+    bd.x = const_cast<double*>(b.data());
+    bd.xtype = CHOLMOD_REAL;
+    bd.dtype = CHOLMOD_DOUBLE;
+    cholmod_l_solve2(CHOLMOD_A, m_cholmodFactor, &bd, nullptr, &x_, nullptr, &y_, &e_, &cholmod());
+    x = Eigen::Map<const Vec>(static_cast<const double*>(x_->x), b.size());
+  }
+
+ private:
+  cholmod_dense *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;
+};
+
 }  // namespace
 
 std::vector<std::string> linear_solver_names() { return {"auto", "umfpack", "cholmod", "gmres"}; }
@@ -71,7 +132,7 @@ LinearSolverMethod parse_linear_solver(const std::string& name) {
 
 struct SparseSolver::Impl {
   Eigen::UmfPackLU<Matrix64> lu;
-  Eigen::CholmodDecomposition<Matrix64, Eigen::Lower> llt;
+  Cholesky llt;
   bool lu_analyzed = false, llt_analyzed = false;
   Matrix64 sym;  // S = (A + Aᵀ)/2 on reduced_'s pattern (gmres)
   std::unique_ptr<Gmres> gmres;
@@ -148,6 +209,16 @@ SparseSolver::SparseSolver(const SparseMatrix& pattern, std::span<const int> fix
 
 SparseSolver::~SparseSolver() = default;
 
+void SparseSolver::restart() {
+  method_ = options_.method;
+  stats_ = {};
+  failure_.clear();
+  impl_->lu_analyzed = false;
+  impl_->precond = Impl::Precond::none;
+  impl_->precond_current = false;
+  impl_->reuses = impl_->last_iterations = 0;
+}
+
 void SparseSolver::set_refinement_steps(int steps) { impl_->lu.umfpackControl()(UMFPACK_IRSTEP) = steps; }
 
 std::string SparseSolver::description() const {
@@ -196,6 +267,8 @@ bool SparseSolver::factor_cholesky(bool symmetric_part) const {
       sv[k] = 0.5 * (av[k] + (transpose_map_[k] >= 0 ? av[transpose_map_[k]] : 0.0));
     a = &s;
   }
+  const int threaded_min = options_.threaded_min_free >= 0 ? options_.threaded_min_free : kThreadedMinFree;
+  const OneThreadRegions serial(num_free() < threaded_min);
   if (!impl_->llt_analyzed) {
     std::lock_guard<std::mutex> one_ordering_at_a_time(ordering_mutex());
     impl_->llt.analyzePattern(*a);
@@ -261,7 +334,7 @@ bool SparseSolver::factorize(const SparseMatrix& a) {
 bool SparseSolver::gmres_solve(const Vec& rb, Vec& rx) const {
   auto apply_a = [this](Eigen::Ref<const Vec> in, Eigen::Ref<Vec> out) { out.noalias() = reduced_ * in; };
   auto apply_p = [this](Eigen::Ref<const Vec> in, Eigen::Ref<Vec> out) {
-    if (impl_->precond == Impl::Precond::cholesky) out = impl_->llt.solve(in);
+    if (impl_->precond == Impl::Precond::cholesky) impl_->llt.solve_into(in, out);
     else out = impl_->lu.solve(in);
   };
   for (int attempt = 0; attempt < 3; ++attempt) {
@@ -289,7 +362,7 @@ bool SparseSolver::solve(const Vec& b, Vec& x) const {
   for (size_t i = 0; i < free_.size(); ++i) rb_[i] = b[free_[i]];
   bool ok = true;
   if (method_ == LinearSolverMethod::gmres) ok = gmres_solve(rb_, rx_);
-  else if (method_ == LinearSolverMethod::cholmod) rx_ = impl_->llt.solve(rb_);
+  else if (method_ == LinearSolverMethod::cholmod) impl_->llt.solve_into(rb_, rx_);
   else rx_ = impl_->lu.solve(rb_);
   ++stats_.solves;
   x.setZero(b.size());

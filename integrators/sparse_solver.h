@@ -12,7 +12,7 @@
 //            not converge with a kept factor is retried with a fresh one.
 //            Stops at ‖b − A x‖ ≤ kGmresTolerance ‖b‖.
 //   auto     cholmod for a symmetric matrix (umfpack when it is not positive
-//            definite), umfpack for small systems, gmres for larger nearly
+//            definite), umfpack below 300 free DoFs, gmres for larger nearly
 //            symmetric ones (measured ‖A − Aᵀ‖_F / ‖A‖_F below kNearlySymmetric),
 //            umfpack otherwise.
 // The symbolic analyses are done once (at the first matrix, on real values).
@@ -37,12 +37,20 @@ LinearSolverMethod parse_linear_solver(const std::string& name);
 
 // Relative residual the gmres method reaches (the direct methods reach ~1e-14).
 constexpr double kGmresTolerance = 1e-10;
+// Free DoFs from which CHOLMOD's supernodal factorization may use OpenMP
+// threads (docs/design.md §11: one thread was faster at 3 267 free DoFs, the
+// threads at 12 675; below, waking them costs more than they give).
+constexpr int kThreadedMinFree = 8000;
 
 struct SparseSolverOptions {
   LinearSolverMethod method = LinearSolverMethod::umfpack;
   // What the model says of the matrix (Model::asymmetric_terms()): empty =
   // symmetric; else the terms whose Jacobians break symmetry.
   std::vector<std::string> asymmetric_terms = {"unknown"};
+  // OpenMP threads inside the factorizations only from this many free DoFs on
+  // (kThreadedMinFree, measured); below, the regions CHOLMOD opens run on the
+  // calling thread alone. Results are bitwise the same either way.
+  int threaded_min_free = -1;  // −1: kThreadedMinFree
 };
 
 class SparseSolver {
@@ -75,6 +83,10 @@ class SparseSolver {
   // refreshes (its preconditioner) is a cache of the same matrix.
   bool solve(const Vec& b, Vec& x) const;
   int num_free() const { return static_cast<int>(free_.size()); }
+  // Starts over as a new solver on the same pattern would (method, statistics,
+  // preconditioner, the value-dependent UMFPACK analysis), keeping the reduced
+  // pattern and CHOLMOD's symbolic analysis, which read the pattern only.
+  void restart();
   // UMFPACK's iterative refinement steps per solve (its default: up to 2).
   // Inside a Newton iteration the iteration itself refines: 0 saves the
   // residual and the extra triangular solves.

@@ -53,13 +53,13 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf(
-      "model %s, integrator %s; times in ms, medians over the timed steps (step_mean: mean)\n"
+      "model %s, integrator %s; times in ms, medians over the timed steps (step_mean: mean); wall unless _cpu\n"
       "umfpack = factor+solve of the step matrix A with UMFPACK LU (the reference);\n"
       "chol(S) = CHOLMOD LLT factor+solve of S = (A + A^T)/2 of the same matrix\n",
       model.c_str(), integrator.c_str());
-  std::printf("%-40s %-8s %7s %9s %9s %9s %9s %9s %9s %7s %7s %6s %6s %7s  %s\n", "scene", "solver", "dofs", "nnz",
-              "step_mean", "step", "umfpack", "chol(S)", "assembly", "/umfp", "/chol", "fact", "krylov", "peak_MB",
-              "chosen");
+  std::printf("%-40s %-8s %7s %9s %9s %9s %9s %9s %9s %9s %9s %7s %7s %6s %6s %7s  %s\n", "scene", "solver", "dofs",
+              "nnz", "step_mean", "step", "step_cpu", "umfpack", "chol(S)", "chol_cpu", "assembly", "/umfp", "/chol",
+              "fact", "krylov", "peak_MB", "chosen");
   for (size_t k = 0; k < scenes.size(); ++k) {
     const std::string& s = scenes[k];
     const wl::Scene& scene = loaded[k];
@@ -70,9 +70,10 @@ int main(int argc, char** argv) {
         const int n = scene.nodes_u() * scene.nodes_v();
         const int steps = steps_override > 0 ? steps_override : n < 1000 ? 100 : n < 10000 ? 20 : 8;
         const wl::bench::Figures f = wl::bench::measure(scene, model, integrator, 3, steps, true, methods[m]);
-        std::printf("%-40s %-8s %7d %9ld %9.3f %9.3f %9.3f %9.3f %9.3f %7.2f %7.2f %6.2f %6.1f %7.0f  %s\n", s.c_str(),
-                    solver.c_str(), f.dofs, f.nnz, f.step.mean_wall_ms(), f.step.wall_ms(), f.factor_solve.wall_ms(),
-                    f.cholmod_reference.wall_ms(), f.assembly.wall_ms(), f.step.wall_ms() / f.factor_solve.wall_ms(),
+        std::printf("%-40s %-8s %7d %9ld %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %7.2f %7.2f %6.2f %6.1f %7.0f  %s\n",
+                    s.c_str(), solver.c_str(), f.dofs, f.nnz, f.step.mean_wall_ms(), f.step.wall_ms(), f.step.cpu_ms(),
+                    f.factor_solve.wall_ms(), f.cholmod_reference.wall_ms(), f.cholmod_reference.cpu_ms(),
+                    f.assembly.wall_ms(), f.step.wall_ms() / f.factor_solve.wall_ms(),
                     f.step.wall_ms() / f.cholmod_reference.wall_ms(), f.factorizations_per_step, f.krylov_per_step,
                     f.peak_mb, f.solver.c_str());
         std::fflush(stdout);

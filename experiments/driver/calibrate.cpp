@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "calibration/fem_test_patch.h"
 #include "experiments/driver/experiment_meta.h"
 #include "experiments/driver/recorded_run.h"
 #include "experiments/output/atomic_file.h"
@@ -190,8 +191,9 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   FemMaterial guess = fem_material(p.scene);
   if (c.diagonal_bending && guess.diagonal_bending_N_m <= 0)  // start where the law is off: the mean
     guess.diagonal_bending_N_m = 0.5 * (guess.warp_bending_N_m + guess.weft_bending_N_m);
+  FemTestPatches patches(p.test_scene);  // kept over the fit's curve evaluations
   const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
-    return run_fem_test(p.test_scene, m, t, keys);
+    return patches.run(m, t, keys);
   };
   t0 = Clock::now();
   std::vector<ResponseCurve> first;

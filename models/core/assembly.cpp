@@ -99,6 +99,23 @@ Assembly::Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std
   }
 }
 
+void Assembly::rebind(const std::vector<Term*>& terms) {
+  if (terms.size() != plans_.size())
+    throw std::logic_error("assembly: rebind with " + std::to_string(terms.size()) + " terms, built with " +
+                           std::to_string(plans_.size()));
+  for (size_t k = 0; k < terms.size(); ++k) {
+    const Term &was = *plans_[k].term, &now = *terms[k];
+    bool same = was.name() == now.name() && was.stencil_size() == now.stencil_size() &&
+                was.num_elements() == now.num_elements();
+    for (int e = 0; same && e < now.num_elements(); ++e) {
+      const auto a = was.stencil(e), b = now.stencil(e);
+      same = std::equal(a.begin(), a.end(), b.begin());
+    }
+    if (!same) throw std::logic_error("assembly: rebind: term '" + now.name() + "' differs in its stencils");
+  }
+  for (size_t k = 0; k < terms.size(); ++k) plans_[k].term = terms[k];
+}
+
 void Assembly::add_stage(int stage, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
                          Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const {
   for (const TermPlan& plan : plans_) {
@@ -150,13 +167,13 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
         if (is_dof(s[a])) f[s[a]] += fl[a];
       if (!kv && !dv && !mv) continue;
       const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;
-      for (int ab = 0; ab < n * n; ++ab) {
-        const int sl = slots[ab];
-        if (sl < 0) continue;
-        if (kv) kv[sl] += kl[ab];
-        if (dv) dv[sl] += dl[ab];
-        if (mv) mv[sl] += ml[ab];
-      }
+      auto scatter = [&](double* global, const double* local) {
+        for (int ab = 0; ab < n * n; ++ab)
+          if (slots[ab] >= 0) global[slots[ab]] += local[ab];
+      };
+      if (kv) scatter(kv, kl);
+      if (dv) scatter(dv, dl);
+      if (mv) scatter(mv, ml);
     }
   };
 

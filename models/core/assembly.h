@@ -32,6 +32,10 @@ class Assembly {
   Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std::pair<int, int>>& extra = {});
 
   int num_dofs() const { return num_dofs_; }
+  // Evaluates `terms` from now on in place of the constructor's: they must be
+  // as many, with the same names and stencils (new parameters only), so the
+  // pattern, colouring and slots stay. Throws std::logic_error otherwise.
+  void rebind(const std::vector<Term*>& terms);
   // Pattern shared by mass, ∂f/∂q and ∂f/∂v: the union of all stencil blocks
   // plus the full diagonal. Values are zero.
   const SparseMatrix& pattern() const { return pattern_; }

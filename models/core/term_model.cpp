@@ -37,6 +37,13 @@ void TermModel::finalize() {
   fixed_.erase(std::unique(fixed_.begin(), fixed_.end()), fixed_.end());
 }
 
+void TermModel::replace_terms(std::vector<std::unique_ptr<Term>> terms) {
+  std::vector<Term*> raw;
+  for (auto& t : terms) raw.push_back(t.get());
+  assembly_->rebind(raw);
+  terms_ = std::move(terms);
+}
+
 void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) {
   if (out.force.size() != num_dofs_) allocate_evaluation(*this, out);
   out.force.setZero();

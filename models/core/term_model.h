@@ -66,6 +66,10 @@ class TermModel : public Model {
   // Derived constructors fill num_dofs_, q0_, v0_, fixed_, constants_ and
   // terms_, then call finalize().
   void finalize();
+  // Replaces terms_ by terms of the same kinds and stencils (new parameters)
+  // and keeps the assembly (pattern, colouring, slots). Throws
+  // std::logic_error when a term's name or stencils differ.
+  void replace_terms(std::vector<std::unique_ptr<Term>> terms);
 
   int num_dofs_ = 0;
   Vec q0_, v0_, constants_;

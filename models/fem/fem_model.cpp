@@ -65,15 +65,36 @@ void FemModel::build() {
   for (int i = 0; i < nv; ++i) q0_.segment<3>(3 * i) = mesh_.x[i];
   constants_ = Vec();
 
-  std::vector<TriangleRest> rest(nt);
+  rest_.resize(nt);
   for (int t = 0; t < nt; ++t) {
     const auto& tri = mesh_.triangles[t];
-    rest[t] = triangle_rest(mesh_.uv[tri[0]], mesh_.uv[tri[1]], mesh_.uv[tri[2]]);
+    rest_[t] = triangle_rest(mesh_.uv[tri[0]], mesh_.uv[tri[1]], mesh_.uv[tri[2]]);
     for (int k = 0; k < 3; ++k)
       max_uv_edge_ = std::max(max_uv_edge_, (mesh_.uv[tri[(k + 1) % 3]] - mesh_.uv[tri[k]]).norm());
   }
   hinges_ = interior_hinges(mesh_);
 
+  add_terms(terms_);
+  for (const NodeRef& p : scene_.pins) {
+    const int v = vertex_of_node(p);
+    for (int c = 0; c < 3; ++c) fixed_.push_back(3 * v + c);
+  }
+  rest_lu_.resize(nt);
+  rest_lv_.resize(nt);
+  for (int e = 0; e < nt; ++e) {
+    const auto s = triangle_stencil(mesh_.triangles[e]);
+    double q[9];
+    for (int k = 0; k < 9; ++k) q[k] = q0_[s[k]];
+    rest_lu_[e] = warp_vector(rest_[e], q).norm();
+    rest_lv_[e] = weft_vector(rest_[e], q).norm();
+  }
+  finalize();
+}
+
+// The terms from material_ (docs/models.md §6), in the order the assembly keeps.
+void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
+  const int nv = mesh_.num_vertices(), nt = mesh_.num_triangles();
+  const std::vector<TriangleRest>& rest = rest_;
   // Mass: always present (no other inertia in the FEM), lumped (docs/models.md §6.6): ρ_A·A/3 per
   // vertex and triangle, or with [fem] yarn_node_mass the total ρ_A·ΣA shared in the proportions of
   // the yarn level's node masses, each vertex's share split evenly over its triangles.
@@ -103,19 +124,19 @@ void FemModel::build() {
       t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
       for (int k = 0; k < 3; ++k) vertex_mass_[tri[k]] += m[k];
     }
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   }
   const TermSwitches& on = scene_.terms;
   if (on.stretch) {
     auto t = std::make_unique<WarpWeftStretchTerm>(material_.warp_stretch_N_per_m, material_.weft_stretch_N_per_m);
     for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   }
   if (on.shear) {
     auto t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
                                                 material_.shear_lock_exponent);
     for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   }
   if (on.stretch && scene_.fem.border_strip) {
     // Border edges (one triangle): the outer half spacing of the border yarns (terms/border_stretch.h).
@@ -131,7 +152,7 @@ void FemModel::build() {
               3 * edge.second + 2},
              d.norm(), std::abs(d.x()) >= std::abs(d.y()));
     }
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   }
   if (on.bending && scene_.fem.grid_line_bending) {
     // Each interior vertex of a grid line bends like a yarn (terms/grid_line_bending.h); a line
@@ -161,7 +182,7 @@ void FemModel::build() {
       for (int b = 1; b + 1 < nb; ++b)
         add_line_element(mesh_.grid_vertex(a, b), mesh_.grid_vertex(a, b + 1), mesh_.grid_vertex(a, b - 1),
                          material_.weft_bending_N_m, width(mesh_.grid_i, a), kFemWeftBending);
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   } else if (on.bending && !hinges_.empty()) {
     auto t = std::make_unique<HingeBendingTerm>(material_.warp_bending_N_m, material_.weft_bending_N_m,
                                                 material_.diagonal_bending_N_m);
@@ -171,7 +192,7 @@ void FemModel::build() {
         for (int c = 0; c < 3; ++c) s[3 * k + c] = 3 * h.v[k] + c;
       t->add(s, mesh_.uv[h.v[1]] - mesh_.uv[h.v[0]], rest[h.tri0].area + rest[h.tri1].area);
     }
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   }
   const Vec3 g(scene_.gravity_m_per_s2[0], scene_.gravity_m_per_s2[1], scene_.gravity_m_per_s2[2]);
   if (on.gravity && g.norm() > 0) {
@@ -180,14 +201,14 @@ void FemModel::build() {
       t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
       t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
     }
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   }
   // Wind: the yarn model's term and parameters, on every triangle (docs/models.md §3.9, §6.6).
   const Vec3 wind(scene_.wind_velocity_m_per_s[0], scene_.wind_velocity_m_per_s[1], scene_.wind_velocity_m_per_s[2]);
   if (on.wind && (scene_.air_density_kg_per_m3 > 0 || scene_.wind_drag_Ns_per_m3 > 0)) {
     auto t = std::make_unique<WindTerm>(wind, scene_.air_density_kg_per_m3, scene_.wind_drag_Ns_per_m3);
     for (const auto& tri : mesh_.triangles) t->add(triangle_stencil(tri));
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   }
   // Yarn-internal stretch damping on the warp and weft edges (docs/models.md §3.12):
   // an edge of length kL along the warp carries k yarns of coefficient ηπR²/(kL).
@@ -203,7 +224,7 @@ void FemModel::build() {
         if (along_yarn && edges.insert({a, b}).second)
           t->add({3 * a, 3 * a + 1, 3 * a + 2, 3 * b, 3 * b + 1, 3 * b + 2}, c);
       }
-    terms_.push_back(std::move(t));
+    terms.push_back(std::move(t));
   }
   if (on.handles && !scene_.handles.empty()) {
     auto t = std::make_unique<HandleSpringTerm>();
@@ -211,11 +232,7 @@ void FemModel::build() {
       const int v = vertex_of_node(h.node);
       t->add({3 * v, 3 * v + 1, 3 * v + 2}, q0_.segment<3>(3 * v), h.stiffness_N_per_m);
     }
-    terms_.push_back(std::move(t));
-  }
-  for (const NodeRef& p : scene_.pins) {
-    const int v = vertex_of_node(p);
-    for (int c = 0; c < 3; ++c) fixed_.push_back(3 * v + c);
+    terms.push_back(std::move(t));
   }
   // Node–obstacle contact and friction at every vertex (docs/models.md §3.11), node spacing stride·L.
   if (!scene_.obstacles.empty()) {
@@ -223,19 +240,15 @@ void FemModel::build() {
     for (int i = 0; i < nv; ++i) node_x.push_back(3 * i);
     const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
     const ObstacleContactRule rule = obstacle_contact_rule(scene_, scene_.fem.stride * scene_.spacing_m, m);
-    obstacles_ = ObstacleContact(scene_, rule, node_x, q0_, terms_);
+    obstacles_ = ObstacleContact(scene_, rule, node_x, q0_, terms);
   }
+}
 
-  rest_lu_.resize(nt);
-  rest_lv_.resize(nt);
-  for (int e = 0; e < nt; ++e) {
-    const auto s = triangle_stencil(mesh_.triangles[e]);
-    double q[9];
-    for (int k = 0; k < 9; ++k) q[k] = q0_[s[k]];
-    rest_lu_[e] = warp_vector(rest[e], q).norm();
-    rest_lv_[e] = weft_vector(rest[e], q).norm();
-  }
-  finalize();
+void FemModel::set_material(const FemMaterial& material) {
+  material_ = material;
+  std::vector<std::unique_ptr<Term>> terms;
+  add_terms(terms);
+  replace_terms(std::move(terms));
 }
 
 int FemModel::vertex_of_node(const NodeRef& node) const {

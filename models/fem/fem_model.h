@@ -18,6 +18,7 @@
 
 #include "models/common/obstacle_contact.h"
 #include "models/core/term_model.h"
+#include "models/fem/deformation_gradient.h"
 #include "models/fem/fem_material.h"
 #include "models/fem/fem_mesh.h"
 #include "models/fem/tension_map.h"
@@ -36,6 +37,11 @@ class FemModel : public TermModel {
   FemModel(const Scene& scene, FemMesh mesh, const FemMaterial& material);
 
   std::unique_ptr<Model> clone() const override { return std::make_unique<FemModel>(*this); }
+  // Re-parameterizes the model: its terms as a model built with `material`
+  // would have them, on the same mesh, pattern and assembly (calibration's
+  // curve evaluations, docs/calibration.md §4). Evaluations are then bitwise
+  // those of FemModel(scene, mesh, material).
+  void set_material(const FemMaterial& material);
   std::string name() const override { return "fem"; }
   bool mass_depends_on_q() const override { return false; }
   Frame frame(double t, const Vec& q, const Vec& v) const override;
@@ -60,12 +66,14 @@ class FemModel : public TermModel {
 
  private:
   void build();
+  void add_terms(std::vector<std::unique_ptr<Term>>& terms);  // from material_; sets vertex_mass_, obstacles_
 
   Scene scene_;
   FemMesh mesh_;
   FemMaterial material_;
   std::vector<Hinge> hinges_;
   std::vector<double> vertex_mass_;
+  std::vector<TriangleRest> rest_;         // per triangle, from the rest UVs
   std::vector<double> rest_lu_, rest_lv_;  // per triangle, from the initial positions
   double max_uv_edge_ = 0.0;
   ObstacleContact obstacles_;  // rigid obstacles of the scene (docs/models.md §3.11)
