@@ -51,7 +51,7 @@ def main():
     runs = {os.path.basename(os.path.dirname(p)): load(p) for p in glob.glob(os.path.join(d, "*", "fit.json"))}
     protocol = [runs.get(f"protocol_{n}") for n in (5, 10, 25)]
     randoms = [r for name, r in sorted(runs.items()) if name.startswith("random_")]
-    slides = [(name, r) for name, r in sorted(runs.items()) if name.startswith("slide_")]
+    slides = sorted(((n, r) for n, r in runs.items() if n.startswith("slide_")), key=lambda x: (len(x[1]["parameters"]), x[0]))
     if not any(protocol) and not slides:
         fail(f"{d}: no protocol_N/fit.json or slide_NAME/fit.json (run experiments/fit_paper.sh)")
     if any(protocol):
@@ -86,7 +86,8 @@ def slide_table(slides):
             tes = lambda x: f"{1e3 * x:.3g} mm" if isinstance(x, (int, float)) else "–"
             print(f"| {name} | distance to target (mean RMS) | | | {tes(budget['distance_mean_rms_m'])} | "
                   f"time error: fitted {tes(te)}, target {tes(tt)} | |")
-    print(f"\n{NO_STD_ERROR}")
+    if any(p.get("std_error") is None for _, run in slides for p in run["parameters"]):
+        print(f"\n{NO_STD_ERROR}")
 
 
 def hanging_table(protocol, randoms):
