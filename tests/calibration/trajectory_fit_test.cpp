@@ -99,7 +99,7 @@ TEST(TrajectoryFit, RecoversTheFrictionCoefficientWhereYarnsSlide) {
   TrajectoryFitOptions opt;
   opt.free = {kFrictionCoefficientKey};
   opt.start = {{kFrictionCoefficientKey, 2.0 * truth.contact.friction_coefficient}};
-  opt.max_iterations = 4;  // 0.3 % off by then (measured); the solver's own tolerance takes 7
+  opt.max_iterations = 4;  // 0.3 % off by then (measured; 3 leave it 16 % off); the solver's own tolerance takes 7
   const TrajectoryFitResult r = fit_trajectory(truth, target, opt);
   EXPECT_NEAR(r.parameters[0].value, truth.contact.friction_coefficient, 1e-2 * truth.contact.friction_coefficient);
   ASSERT_FALSE(r.final_rms.empty());
