@@ -4,9 +4,11 @@
 # (S = 1000 Pa, μ = 0.5) is simulated by our yarn level (be-newton, 0.25 s = 25
 # frames of 10 ms); all eight parameters are then fitted to its first 5, 10 and
 # 25 frames from the protocol start, and to 5 frames from three random starts.
+# Then μ on a scene where yarns slide (slide_pull_7.toml), alone and with the other parameters.
 # Writes results/fit_paper/<run>/ (fit.json, charts) and results/fit_paper/table.md;
 # fits already in the folder are kept (delete it to redo them).
-# About 30 min on 2 idle cores.
+# About 30 min on 2 idle cores; `fit_paper.sh slide` runs only the μ fits (a few minutes),
+# `fit_paper.sh hanging` only the others.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh >/dev/null
@@ -14,9 +16,8 @@ out=${OUT:-results/fit_paper}
 scene=experiments/scenes/hanging_wind.toml
 mkdir -p "$out"
 
-if [ ! -f "$out/target/summary.json" ]; then
-  build/weavelab run "$scene" --integrator be-newton --duration 0.25 --out "$out/target" --quiet
-fi
+part=${1:-all}  # hanging | slide | all
+case $part in hanging | slide | all) ;; *) echo "usage: fit_paper.sh [hanging|slide|all]" >&2; exit 2 ;; esac
 
 keys=contact.shear_modulus_Pa,contact.friction_coefficient
 for y in yarn1 yarn2; do
@@ -30,16 +31,21 @@ protocol=(--start contact.shear_modulus_Pa=600 --start contact.friction_coeffici
           --start yarn_types.yarn1.stretch_modulus_Pa=335000 --start yarn_types.yarn2.stretch_modulus_Pa=335000
           --start yarn_types.yarn1.bending_modulus_Pa=0.000125 --start yarn_types.yarn2.bending_modulus_Pa=0.000125)
 
-fit() {  # name frames start-arguments...
-  local name=$1 frames=$2
-  shift 2
+fit_on() {  # scene target keys name frames start-arguments...
+  local on=$1 target=$2 free=$3 name=$4 frames=$5
+  shift 5
   if [ -f "$out/$name/fit.json" ]; then echo "fit_paper.sh: $name done before, kept" >&2; return; fi
   echo "fit_paper.sh: $name ($frames frames)" >&2
-  build/weavelab fit "$scene" --target "$out/target" --free "$keys" --frames "$frames" --integrator be-newton \
+  build/weavelab fit "$on" --target "$target" --free "$free" --frames "$frames" --integrator be-newton \
     --max-iterations 15 --out "$out/$name" "$@" || true  # a fit that ends unconverged is still recorded
   /usr/bin/python3 experiments/plot_fit.py "$out/$name"
 }
+fit() { fit_on "$scene" "$out/target" "$keys" "$@"; }  # name frames start-arguments...
 
+if [ "$part" != slide ]; then
+if [ ! -f "$out/target/summary.json" ]; then
+  build/weavelab run "$scene" --integrator be-newton --duration 0.25 --out "$out/target" --quiet
+fi
 for n in 5 10 25; do fit "protocol_$n" "$n" "${protocol[@]}"; done
 for seed in 1 2 3; do
   # Random starts as in the paper's Tables 6–7: yarn parameters drawn in ±10 % of
@@ -57,5 +63,23 @@ PY
 )
   fit "random_${seed}_5" 5 "${start[@]}"
 done
+fi
+
+# μ where yarns slide under load (docs/calibration.md §7.5): the hanging cloth cannot tell μ, so a
+# handle pulls one warp through a cloth pinned at its sides (slide_pull_7.toml; all 6 frames of its
+# 30 ms). μ alone from twice its value, then μ with S and the yarn's density, stretch and bending
+# from 2×, 0.6×, 1.5×, 0.6× and 1.4× their values.
+if [ "$part" != hanging ]; then
+slide=experiments/scenes/slide_pull_7.toml
+if [ ! -f "$out/slide_target/summary.json" ]; then
+  build/weavelab run "$slide" --error-estimate --out "$out/slide_target" --quiet
+fi
+y=yarn_types.default
+fit_on "$slide" "$out/slide_target" contact.friction_coefficient slide_mu 6 --start contact.friction_coefficient=0.1
+fit_on "$slide" "$out/slide_target" \
+  contact.friction_coefficient,contact.shear_modulus_Pa,$y.density_kg_per_m,$y.stretch_modulus_Pa,$y.bending_modulus_Pa \
+  slide_all 6 --start contact.friction_coefficient=0.1 --start contact.shear_modulus_Pa=600 \
+  --start $y.density_kg_per_m=0.003 --start $y.stretch_modulus_Pa=300000 --start $y.bending_modulus_Pa=0.0002
+fi
 /usr/bin/python3 experiments/fit_paper_table.py "$out" > "$out/table.md"
 cat "$out/table.md"

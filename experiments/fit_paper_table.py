@@ -3,6 +3,8 @@
 (the scene's value), Gong et al. 2022's recovered value (Table 2, 17×17
 Plain-(1,2), 25 frames), ours from 5, 10 and 25 frames (protocol start) and
 the mean ± std over the random starts, with relative errors and wall times.
+Then, for the fits named slide_* (μ where yarns slide, the slide_pull scene),
+each free parameter's truth, start and fitted value with the fit's cost.
 Usage: fit_paper_table.py DIR
 """
 import glob
@@ -23,6 +25,7 @@ PAPER = {
     "yarn_types.yarn2.stretch_modulus_Pa": 171304, "yarn_types.yarn2.bending_modulus_Pa": 1.034e-4,
 }
 PAPER_HOURS_PER_FIT = "≈ 6.4 h (paper, GPU machine)"
+NO_STD_ERROR = "¹ no standard error: the frames do not determine it (the fit cannot tell it; it stays near its start)."
 
 
 def truth(scene_text, key):
@@ -48,8 +51,46 @@ def main():
     runs = {os.path.basename(os.path.dirname(p)): load(p) for p in glob.glob(os.path.join(d, "*", "fit.json"))}
     protocol = [runs.get(f"protocol_{n}") for n in (5, 10, 25)]
     randoms = [r for name, r in sorted(runs.items()) if name.startswith("random_")]
-    if not any(protocol):
-        fail(f"{d}: no protocol_N/fit.json (run experiments/fit_paper.sh)")
+    slides = sorted(((n, r) for n, r in runs.items() if n.startswith("slide_")), key=lambda x: (len(x[1]["parameters"]), x[0]))
+    if not any(protocol) and not slides:
+        fail(f"{d}: no protocol_N/fit.json or slide_NAME/fit.json (run experiments/fit_paper.sh)")
+    if any(protocol):
+        hanging_table(protocol, randoms)
+    if slides:
+        slide_table(slides)
+
+
+def slide_table(slides):
+    """μ where yarns slide: per fit, each free parameter's truth, start, value and
+    standard error, with the fit's convergence, cost and time error budget."""
+    print("\n**Where yarns slide** (slide_pull scene; μ first, then the other free parameters)\n")
+    head = "| fit | parameter | truth | start | fitted (error) | std. error | converged, iterations, sim., wall |"
+    print(head)
+    print("|" + "---|" * (head.count("|") - 1))
+    for name, run in slides:
+        scene = run["scene"]["text"]
+        budget = run.get("error_budget", {})
+        status = (f"{'yes' if run['converged'] else 'no'}, {run['iterations']} it., {run['simulations']} sim., "
+                  f"{run['wall_s']:.1f} s")
+        for p in run["parameters"]:
+            t = truth(scene, p["key"])
+            se = f"{p['std_error']:.2g}" if p.get("std_error") is not None else "– ¹"
+            key = p["key"].replace("yarn_types.", "").replace("contact.", "")
+            print(f"| {name} ({run['frames']} fr.) | {key} | {t:.4g} | {p['start']:.4g} | "
+                  f"{p['value']:.6g} ({rel(p['value'], t)}) | {se} | {status} |")
+            status = ""
+        if isinstance(budget.get("distance_mean_rms_m"), (int, float)):
+            te = budget.get("fitted_time_error", {})
+            te = te.get("mean_rms_m") if isinstance(te, dict) else None
+            tt = budget.get("target_time_error_mean_rms_m")
+            tes = lambda x: f"{1e3 * x:.3g} mm" if isinstance(x, (int, float)) else "–"
+            print(f"| {name} | distance to target (mean RMS) | | | {tes(budget['distance_mean_rms_m'])} | "
+                  f"time error: fitted {tes(te)}, target {tes(tt)} | |")
+    if any(p.get("std_error") is None for _, run in slides for p in run["parameters"]):
+        print(f"\n{NO_STD_ERROR}")
+
+
+def hanging_table(protocol, randoms):
     scene = next(r for r in protocol if r)["scene"]["text"]
     value = lambda run, key: next(p["value"] for p in run["parameters"] if p["key"] == key)
     ident = lambda run, key: next(p.get("std_error") is not None for p in run["parameters"] if p["key"] == key)
@@ -75,7 +116,7 @@ def main():
     times = [f"{r['wall_s'] / 60:.1f} min, {r['simulations']} sim." if r else "–" for r in protocol]
     rt = f"{statistics.mean(r['wall_s'] for r in randoms) / 60:.1f} min each" if randoms else "–"
     print(f"| wall time per fit | | {PAPER_HOURS_PER_FIT} | " + " | ".join(times) + f" | {rt} |")
-    print("\n¹ no standard error: the frames do not determine it (the fit cannot tell it; it stays near its start).")
+    print(f"\n{NO_STD_ERROR}")
 
 
 if __name__ == "__main__":

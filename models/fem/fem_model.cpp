@@ -230,7 +230,7 @@ void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
     auto t = std::make_unique<HandleSpringTerm>();
     for (const Handle& h : scene_.handles) {
       const int v = vertex_of_node(h.node);
-      t->add({3 * v, 3 * v + 1, 3 * v + 2}, q0_.segment<3>(3 * v), h.stiffness_N_per_m);
+      t->add({3 * v, 3 * v + 1, 3 * v + 2}, q0_.segment<3>(3 * v), h);
     }
     terms.push_back(std::move(t));
   }

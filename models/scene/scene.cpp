@@ -36,7 +36,9 @@
 //   [pose]
 //     kind = "flat" | "upright";  height_m (any number)
 //   [[pins]]      node = [i, j]                 (0 ≤ i < wefts, 0 ≤ j < warps)
-//   [[handles]]   node = [i, j] (required); stiffness_N_per_m > 0
+//   [[handles]]   node = [i, j] (required); stiffness_N_per_m > 0;
+//                 velocity_m_per_s = [x, y, z] (the target's prescribed motion), start_s ≥ 0,
+//                 stop_s > start_s (both only with velocity_m_per_s)
 //                 A node is pinned or held at most once.
 //   [gravity]     acceleration_m_per_s2 = [x, y, z]
 //   [wind]        velocity_m_per_s = [x, y, z]; air_density_kg_per_m3 ≥ 0; drag_Ns_per_m3 ≥ 0
@@ -339,6 +341,20 @@ NodeRef read_node(TableReader& t, const Scene& s, std::map<std::pair<int, int>, 
   return NodeRef{static_cast<int>(i), static_cast<int>(j)};
 }
 
+// Prescribed motion of a handle's target (docs/models.md §3.10): velocity_m_per_s
+// from start_s (default 0) until stop_s (default: the end of the run).
+void read_handle_motion(TableReader& h, Handle& handle) {
+  const bool moves =
+      h.read_vec3("velocity_m_per_s", handle.velocity_m_per_s, "an array of 3 finite numbers [x, y, z] (m/s)");
+  h.read_number("start_s", handle.start_s, "a finite number ≥ 0 (s)", non_negative);
+  const double start = handle.start_s;
+  h.read_number("stop_s", handle.stop_s, "a finite number > start_s" + eq(start) + " (s)",
+                [start](double x) { return x > start; });
+  const std::string still = "no timing without velocity_m_per_s (a handle without it does not move)";
+  for (const char* key : {"start_s", "stop_s"})
+    if (!moves && h.table().get(key)) h.fail_key(key, still, "");
+}
+
 void read_boundary(TableReader& top, Scene& s) {
   std::map<std::pair<int, int>, std::string> taken;
   for (TableReader& p : top.table_array("pins")) {
@@ -349,6 +365,7 @@ void read_boundary(TableReader& top, Scene& s) {
     Handle handle;
     handle.node = read_node(h, s, taken);
     h.read_number("stiffness_N_per_m", handle.stiffness_N_per_m, "a number > 0 (N/m)", positive);
+    read_handle_motion(h, handle);
     h.finish();
     s.handles.push_back(handle);
   }

@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -52,9 +53,15 @@ struct NodeRef {
   int i = 0, j = 0;  // i along the warp (material u), j along the weft (material v)
 };
 
+// A handle spring (docs/models.md §3.10). Its target starts at the node's
+// initial position and moves at velocity_m_per_s from start_s until stop_s
+// (prescribed motion; zero velocity: static).
 struct Handle {
   NodeRef node;
   double stiffness_N_per_m = 1e4;
+  std::array<double, 3> velocity_m_per_s{0.0, 0.0, 0.0};
+  double start_s = 0.0;
+  double stop_s = std::numeric_limits<double>::infinity();  // ∞: moves until the run ends
 };
 
 struct FemSettings {

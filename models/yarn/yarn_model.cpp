@@ -276,13 +276,13 @@ void YarnModel::add_damping() {
   terms_.push_back(std::move(t));
 }
 
-// Handles: a spring from the node to its rest position (docs/models.md §3.10).
+// Handles: a spring from the node to its target, which starts at the rest position (docs/models.md §3.10).
 void YarnModel::add_handles() {
   if (scene_.handles.empty()) return;
   auto t = std::make_unique<HandleSpringTerm>();
   for (const Handle& h : scene_.handles) {
     const int x = grid_.dofs(grid_.node(h.node.i, h.node.j)).x;
-    t->add({x, x + 1, x + 2}, q0_.segment<3>(x), h.stiffness_N_per_m);
+    t->add({x, x + 1, x + 2}, q0_.segment<3>(x), h);
   }
   terms_.push_back(std::move(t));
 }

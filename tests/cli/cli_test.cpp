@@ -68,6 +68,13 @@ TEST_F(Cli, NegativeRadiusIsRejected) {
   expect_rejected("[cloth]\nradius_m = -0.5\n", {"bad.toml:2", "cloth.radius_m", "-0.5"});
 }
 
+TEST_F(Cli, HandleStoppingBeforeItStartsIsRejected) {
+  expect_rejected(
+      "[cloth]\nwarps = 5\n[[handles]]\nnode = [0, 0]\nvelocity_m_per_s = [0.1, 0, 0]\n"
+      "start_s = 0.02\nstop_s = 0.01\n",
+      {"bad.toml:7", "handles[0].stop_s", "0.01", "> start_s (= 0.02)"});
+}
+
 TEST_F(Cli, MissingFileIsRejected) {
   const fs::path out = dir_ / "out";
   Result r = run_cli("run '" + (dir_ / "nope.toml").string() + "' --out '" + out.string() + "'", dir_);

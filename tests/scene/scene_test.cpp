@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -248,6 +249,35 @@ TEST(SceneErrors, NodeRefsMustBeInsideTheGridAndUnique) {
   EXPECT_EQ(e.value, "nothing (key missing)");
   expect_error(cloth + "[[pins]]\nnode = [1, 1]\n[[handles]]\nnode = [1, 1]\n", 7, "handles[0].node",
                "pins[0].node uses it");
+}
+
+// Prescribed handle motion (docs/models.md §3.10): a velocity, optionally
+// timed; a static handle has no timing, and a stop must come after the start.
+TEST(SceneParse, HandleMotion) {
+  const std::string h = "[[handles]]\nnode = [0, 0]\n";
+  const Scene moving =
+      parse_scene(h + "velocity_m_per_s = [-0.5, 0, 0.25]\nstart_s = 0.002\nstop_s = 0.03\n", "m.toml");
+  EXPECT_EQ(moving.handles[0].velocity_m_per_s, (std::array<double, 3>{-0.5, 0.0, 0.25}));
+  EXPECT_EQ(moving.handles[0].start_s, 0.002);
+  EXPECT_EQ(moving.handles[0].stop_s, 0.03);
+  const Scene still = parse_scene(h, "s.toml");
+  EXPECT_EQ(still.handles[0].velocity_m_per_s, (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_EQ(still.handles[0].start_s, 0.0);
+  EXPECT_TRUE(std::isinf(still.handles[0].stop_s));
+}
+
+TEST(SceneErrors, HandleMotionMustBeFiniteAndOrdered) {
+  const std::string h = "[cloth]\nwarps = 5\n[[handles]]\nnode = [0, 0]\n";
+  expect_error(h + "velocity_m_per_s = [0, nan, 0]\n", 5, "handles[0].velocity_m_per_s", "3 finite numbers");
+  expect_error(h + "velocity_m_per_s = [1, 0]\n", 5, "handles[0].velocity_m_per_s", "3 finite numbers");
+  const std::string v = h + "velocity_m_per_s = [0.1, 0, 0]\n";
+  expect_error(v + "start_s = -0.01\n", 6, "handles[0].start_s", "≥ 0");
+  expect_error(v + "stop_s = inf\n", 6, "handles[0].stop_s", "> start_s (= 0)");
+  const SceneError e =
+      expect_error(v + "start_s = 0.02\nstop_s = 0.01\n", 7, "handles[0].stop_s", "> start_s (= 0.02)");
+  EXPECT_EQ(e.value, "0.01");
+  expect_error(h + "stop_s = 0.01\n", 5, "handles[0].stop_s", "without velocity_m_per_s");
+  expect_error(h + "start_s = 0.01\n", 5, "handles[0].start_s", "without velocity_m_per_s");
 }
 
 TEST(SceneErrors, PatternsMustMakeSense) {
