@@ -196,8 +196,8 @@ TEST(MeshBarrier, ForceIsContinuousWhereTheNearestFeatureChanges) {
 }
 
 // Conservative advancement: exact for a path straight at a face, caught before
-// a thin sheet it would cross in one step, never later than the analytic box's
-// exact first approach and close to it, with a moving mesh too.
+// a thin sheet it would cross in one step, never past the analytic box's first
+// approach and close to it, with a moving mesh too.
 TEST(MeshCcd, FirstApproachIsConservativeAndCatchesTunnelling) {
   const auto dir = test::temp_folder();
   test::write_obj(dir / "sheet.obj", test::square_mesh(0.5));
@@ -227,10 +227,11 @@ TEST(MeshCcd, FirstApproachIsConservativeAndCatchesTunnelling) {
     const double am = mesh.first_approach(x0, 0, x1, 1, 0.01), ab = box.first_approach(x0, 0, x1, 1, 0.01);
     for (int j = 0; j < 200; ++j)  // above τ on [0, α)
       ASSERT_GT(mesh.signed_distance(x0 + am * j / 200.0 * (x1 - x0), 0), 0.01 * (1 - 1e-9));
-    ASSERT_LE(am, ab + 1e-9);  // never later than the exact first approach
+    // never past the first approach to τ of the analytic box (exact to 10⁻⁶ τ)
+    ASSERT_GT(box.signed_distance(x0 + am * (x1 - x0), 0), 0.01 * (1 - 1e-9));
     if (ab < 1.0) {
       ++hits;
-      close += ab - am < 1e-4;
+      close += std::abs(ab - am) < 1e-4;
     }
   }
   EXPECT_GT(hits, 100);
