@@ -7,31 +7,43 @@
 # WL_DURATION (default 0.05 s) is the simulated time: the drape is still
 # falling then; it settles only after seconds of simulated time.
 # WL_LINEAR_SOLVER (e.g. umfpack) sets the step matrix solver of every run.
-# Results under results/cusick/: the runs, drape_<model>.csv and cost.txt.
+# WL_SCENE (default cusick_drape_65) names another scene of experiments/scenes,
+# e.g. cusick_drape_33 (run until it settles: WL_DURATION=1 WL_FREE=0);
+# WL_OUTPUT_INTERVAL replaces the scene's frame interval (s); WL_FREE=0 skips
+# the runs without the pedestal (and cost.txt).
+# Results under results/cusick/ (results/<scene>/ for another scene): the runs,
+# drape_<model>.csv and cost.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scene=experiments/scenes/cusick_drape_65.toml
+name=${WL_SCENE:-cusick_drape_65}
+scene=experiments/scenes/$name.toml
 out=results/cusick
+if [ "$name" != cusick_drape_65 ]; then out=results/$name; fi
 python=/usr/bin/python3
 duration=${WL_DURATION:-0.05}
-solver=()
-if [ -n "${WL_LINEAR_SOLVER:-}" ]; then solver=(--linear-solver "$WL_LINEAR_SOLVER"); fi
+free=${WL_FREE:-1}
+extra=()
+if [ -n "${WL_LINEAR_SOLVER:-}" ]; then extra=(--linear-solver "$WL_LINEAR_SOLVER"); fi
+if [ -n "${WL_OUTPUT_INTERVAL:-}" ]; then extra+=(--output-interval "$WL_OUTPUT_INTERVAL"); fi
 tools/setup.sh
 mkdir -p "$out"
-"$python" - <<'PY' >"$out/free.toml"
-import re
-text = open("experiments/scenes/cusick_drape_65.toml").read()
+"$python" - "$scene" <<'PY' >"$out/free.toml"
+import re, sys
+text = open(sys.argv[1]).read()
 print(re.sub(r"\[\[obstacles\]\].*?(?=\n\[)", "", text, flags=re.S))
 PY
+runs=(drape free)
+if [ "$free" = 0 ]; then runs=(drape); fi
 for model in yarn fem; do
-  for run in drape free; do
+  for run in "${runs[@]}"; do
     s=$scene
     if [ "$run" = free ]; then s=$out/free.toml; fi
     echo "== $run, $model model, $duration s" >&2
-    build/weavelab run "$s" --model "$model" --duration "$duration" "${solver[@]}" --quiet --out "$out/${run}_$model"
+    build/weavelab run "$s" --model "$model" --duration "$duration" "${extra[@]}" --quiet --out "$out/${run}_$model"
   done
   "$python" experiments/drape_measure.py "$out/drape_$model" "$scene" --out "$out/drape_$model.csv" | tail -1
 done
+if [ "$free" = 0 ]; then exit 0; fi
 "$python" - "$out" <<'PY' | tee "$out/cost.txt"
 import statistics, sys
 sys.path.insert(0, "experiments")

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
 
@@ -32,6 +33,10 @@ Obstacle::Obstacle(const ObstacleSpec& spec)
     case ObstacleSpec::Shape::box: half_ = vec(spec.half_extents_m); break;
     case ObstacleSpec::Shape::cylinder:
     case ObstacleSpec::Shape::disk: half_ = Vec3(spec.radius_m, spec.radius_m, 0.5 * spec.height_m); break;
+    case ObstacleSpec::Shape::mesh:
+      if (!spec.mesh) throw std::invalid_argument("Obstacle: shape = \"mesh\" without its surface (read at load)");
+      mesh_ = std::make_shared<MeshDistance>(*spec.mesh, spec.side == ObstacleSpec::Side::outside);
+      break;
     default: half_ = Vec3::Constant(spec.radius_m);
   }
 }
@@ -105,6 +110,7 @@ double Obstacle::local_distance(const Vec3& p, Vec3* g, Mat3* h) const {
       *g = e;  // inside, nearer the side
       return w0;
     }
+    case ObstacleSpec::Shape::mesh: return mesh_->distance(p, g, h);
   }
   return 0.0;
 }
@@ -119,6 +125,7 @@ double Obstacle::first_approach(const Vec3& x0, double t0, const Vec3& x1, doubl
   double f = local_distance(p0, &g, nullptr) - tau;
   if (f <= 0.0) return 0.0;
   const double tol = 1e-6 * std::max(tau, 1e-300);
+  if (mesh_) return conservative_advance(p0, delta, f, tau, tol);
   for (int it = 0; it < 60; ++it) {
     const double slope = g.dot(delta);
     if (slope >= 0.0) return 1.0;  // convex: d grows from here on
@@ -126,6 +133,23 @@ double Obstacle::first_approach(const Vec3& x0, double t0, const Vec3& x1, doubl
     if (next >= 1.0) return 1.0;  // the tangent, below d, stays above τ up to α = 1
     alpha = next;
     f = local_distance(p0 + alpha * delta, &g, nullptr) - tau;
+    if (f <= tol) break;
+  }
+  return alpha;
+}
+
+// d is 1-Lipschitz, so d(p₀ + α'Δ) ≥ d(p₀ + αΔ) − (α' − α)‖Δ‖: from α the
+// distance stays above τ for a further (d − τ)/‖Δ‖ of the path (conservative
+// advancement, docs/models.md §3.11.4). Exact in one step for a path straight
+// at a face; a grazing path advances slowly and stops after 1000 steps, short.
+double Obstacle::conservative_advance(const Vec3& p0, const Vec3& delta, double f, double tau, double tol) const {
+  const double length = delta.norm();
+  if (length == 0.0) return 1.0;
+  double alpha = 0.0;
+  for (int it = 0; it < 1000; ++it) {
+    alpha += f / length;
+    if (alpha >= 1.0) return 1.0;
+    f = mesh_->distance(p0 + alpha * delta, nullptr, nullptr) - tau;
     if (f <= tol) break;
   }
   return alpha;
@@ -172,6 +196,10 @@ void Obstacle::surface(double t, double plane_extent, std::vector<Vec3>& points,
       quad(1, 3, 7, 5);
       break;
     }
+    case ObstacleSpec::Shape::mesh:
+      local = mesh_->vertices();
+      faces = mesh_->faces();
+      break;
     case ObstacleSpec::Shape::cylinder:
     case ObstacleSpec::Shape::disk: {
       const int n = 48;

@@ -1,7 +1,10 @@
 #include "models/scene/obstacle_reader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <string>
+
+#include "models/scene/obstacle_mesh.h"
 
 namespace wl::scene_detail {
 namespace {
@@ -14,13 +17,39 @@ void read_size(TableReader& t, const char* key, double& out, const std::string& 
   if (!t.read_number(key, out, expected, positive)) t.fail_missing(key, expected);
 }
 
+// shape = "mesh": file (relative to the scene file), scale > 0, side; the
+// surface is read and checked here, so a bad mesh fails at load (§3.11.9).
+void read_mesh(TableReader& t, const Scene& s, ObstacleSpec& o) {
+  namespace fs = std::filesystem;
+  const std::string expected_file =
+      "a path to a Wavefront OBJ file (string), relative to the scene file's directory, required for shape = \"mesh\"";
+  std::string rel;
+  if (!t.read_string("file", rel, expected_file, [](const std::string& x) { return !x.empty(); }))
+    t.fail_missing("file", expected_file);
+  const fs::path p =
+      fs::path(rel).is_absolute() ? fs::path(rel) : (fs::path(s.source).parent_path() / rel).lexically_normal();
+  std::error_code ec;
+  if (!fs::is_regular_file(p, ec))
+    t.fail_at(*t.table().get("file"), "file",
+              "an existing OBJ file, relative to the scene file's directory (looked for " + p.string() + ")");
+  o.mesh_file = p.string();
+  t.read_number("scale", o.scale, "a number > 0 (the mesh's coordinates are multiplied by it to give metres)",
+                positive);
+  int side = 0;
+  t.read_choice("side", side, {"outside", "both"});
+  o.side = static_cast<ObstacleSpec::Side>(side);
+  auto mesh = std::make_shared<ObstacleMesh>(read_obj_mesh(o.mesh_file, o.scale));
+  if (o.side == ObstacleSpec::Side::outside) orient_closed_mesh(*mesh);
+  o.mesh = std::move(mesh);
+}
+
 void read_one(TableReader& t, Scene& s) {
   ObstacleSpec o;
   o.line = t.line();
-  const std::vector<std::string> shapes{"plane", "sphere", "box", "cylinder", "disk"};
+  const std::vector<std::string> shapes{"plane", "sphere", "box", "cylinder", "disk", "mesh"};
   int shape = 0;
   if (!t.read_choice("shape", shape, shapes))
-    t.fail_missing("shape", "one of \"plane\", \"sphere\", \"box\", \"cylinder\", \"disk\"");
+    t.fail_missing("shape", "one of \"plane\", \"sphere\", \"box\", \"cylinder\", \"disk\", \"mesh\"");
   o.shape = static_cast<ObstacleSpec::Shape>(shape);
   const std::string vec = "an array of 3 numbers [x, y, z]";
   if (!t.read_vec3("center_m", o.center_m, vec + " (m)")) t.fail_missing("center_m", vec + " (m)");
@@ -46,6 +75,7 @@ void read_one(TableReader& t, Scene& s) {
       read_size(t, "radius_m", o.radius_m, name);
       read_size(t, "thickness_m", o.height_m, name);
       break;
+    case ObstacleSpec::Shape::mesh: read_mesh(t, s, o); break;
   }
   t.finish("(for shape = \"" + name + "\")");
   s.obstacles.push_back(o);

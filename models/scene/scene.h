@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -87,8 +88,11 @@ struct FemSettings {
 // the shape is given in that frame: plane z ≤ 0; sphere; box |x|,|y|,|z| ≤ half
 // extents; cylinder and disk of radius_m about the local z axis, height_m high,
 // centred on z = 0. It moves at a constant velocity (0: static).
+// A triangle-mesh obstacle's surface as read from its file (obstacle_mesh.h).
+struct ObstacleMesh;
+
 struct ObstacleSpec {
-  enum class Shape { plane, sphere, box, cylinder, disk } shape = Shape::plane;
+  enum class Shape { plane, sphere, box, cylinder, disk, mesh } shape = Shape::plane;
   std::array<double, 3> center_m{0.0, 0.0, 0.0};
   std::array<double, 3> rotation_deg{0.0, 0.0, 0.0};
   std::array<double, 3> velocity_m_per_s{0.0, 0.0, 0.0};
@@ -96,7 +100,14 @@ struct ObstacleSpec {
   double radius_m = 0.0;                                // sphere, cylinder, disk
   double height_m = 0.0;                                // cylinder (height_m), disk (thickness_m)
   double friction_coefficient = 0.0;                    // μ against the cloth
-  int line = 0;                                         // its [[obstacles]] entry in the scene file
+  // mesh: the file (resolved), the uniform scale applied to its coordinates,
+  // and whether it bounds a solid (closed, signed distance) or is a two-sided
+  // surface (unsigned distance), docs/models.md §3.11.9.
+  std::string mesh_file;
+  double scale = 1.0;
+  enum class Side { outside, both } side = Side::outside;
+  std::shared_ptr<const ObstacleMesh> mesh;  // read, scaled and checked at load
+  int line = 0;                              // its [[obstacles]] entry in the scene file
 };
 
 // Node–obstacle contact (docs/models.md §3.11.2–§3.11.3); absent values follow

@@ -225,6 +225,22 @@ TEST_F(Cli, SlidingCoordinatesThatCrossEndInOutcomeInvalidState) {
   EXPECT_TRUE(fs::exists(out / "metrics.csv"));
 }
 
+const std::string kMeshObstacle = "[[obstacles]]\nshape = \"mesh\"\ncenter_m = [0, 0, -1]\n";
+
+// A mesh obstacle is written into the obstacles series with the cloth: the
+// shipped icosphere's 642 vertices and 1280 triangles (docs/models.md §3.11.5).
+TEST_F(Cli, AMeshObstacleIsWrittenWithTheCloth) {
+  const fs::path out = dir_ / "out";
+  const Result r =
+      run_cli(std::string("run '") + WEAVELAB_SOURCE_DIR +
+                  "/experiments/scenes/mesh_sphere_drape.toml' --duration 0.002 --quiet --out '" + out.string() + "'",
+              dir_);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "obstacles.pvd"));
+  const std::string vtu = file_text(out / "frames" / "obstacles_00000.vtu");
+  EXPECT_NE(vtu.find("NumberOfPoints=\"642\" NumberOfCells=\"1280\""), std::string::npos) << vtu.substr(0, 600);
+}
+
 // Bad inputs of every kind: each is exit 2 with a located message (the scene,
 // mesh or parameter file with its line, or the option) and writes nothing.
 TEST_F(Cli, EveryBadInputIsALocatedExit2) {
@@ -305,6 +321,14 @@ TEST_F(Cli, EveryBadInputIsALocatedExit2) {
        "\nshear_modulus = 1\n", "p.toml:2"},
       {"--model fem", "[cloth]\nwarps = 3\nwefts = 3\n[fem]\nparameter_file = \"p.toml\"\n", "p.toml", "x = [",
        "p.toml:1"},
+      // mesh obstacles (docs/models.md §3.11.9): a missing, garbled, degenerate or open mesh, a scale ≤ 0
+      {"", kMeshObstacle + "file = \"nope.obj\"\n", "", "", "bad.toml:4"},
+      {"", kMeshObstacle + "file = \"m.obj\"\n", "m.obj", "v 0 0 0\nv 1 0 zz\n", "m.obj:2"},
+      {"", kMeshObstacle + "file = \"m.obj\"\nside = \"both\"\n", "m.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n",
+       "m.obj:4"},
+      {"", kMeshObstacle + "file = \"m.obj\"\n", "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "m.obj:4"},
+      {"", kMeshObstacle + "file = \"m.obj\"\nscale = 0\n", "m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+       "bad.toml:5"},
   };
   int rejected = 0, located = 0, written = 0;
   for (const Case& c : cases) {

@@ -13,6 +13,7 @@
 #include "models/common/obstacle_barrier.h"
 #include "models/common/obstacle_friction.h"
 #include "tests/support/fd_check.h"
+#include "tests/support/obstacle_meshes.h"
 
 namespace wl {
 namespace {
@@ -25,15 +26,7 @@ ObstacleSpec spec(ObstacleSpec::Shape shape, Vec3 c, Vec3 rot_deg = Vec3::Zero()
   return s;
 }
 
-// x = c + R p with R = R_z R_y R_x (the scene's convention), computed here independently.
-Vec3 world(const ObstacleSpec& s, const Vec3& p) {
-  const double k = std::numbers::pi / 180.0;
-  const Mat3 R = (Eigen::AngleAxisd(k * s.rotation_deg[2], Vec3::UnitZ()) *
-                  Eigen::AngleAxisd(k * s.rotation_deg[1], Vec3::UnitY()) *
-                  Eigen::AngleAxisd(k * s.rotation_deg[0], Vec3::UnitX()))
-                     .toRotationMatrix();
-  return Vec3(s.center_m[0], s.center_m[1], s.center_m[2]) + R * p;
-}
+Vec3 world(const ObstacleSpec& s, const Vec3& p) { return test::world_point(s, p); }
 
 struct Case {
   ObstacleSpec spec;
