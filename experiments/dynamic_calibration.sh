@@ -36,10 +36,11 @@ start=$(date +%s)
 tests=uniaxial-warp,uniaxial-weft,biaxial,shear,bending-warp,bending-weft,bending-diagonal,bending-antidiagonal
 [ -f "$static" ] || build/weavelab calibrate experiments/scenes/hanging_wind.toml --grid-line-bending --starts 1 \
   --tests "$tests" --quiet --out "$(dirname "$static")"
-# 1b. The same battery fitted by the spline shear law (docs/models.md §6.4.1), knots at $knots rad;
+# 1b. The same battery fitted by the spline shear law (docs/models.md §6.4.1), knots at $knots rad,
+# each point weighed by its relative error (docs/calibration.md §5.2);
 # reused when $SPLINE exists.
 [ -f "$spline" ] || build/weavelab calibrate experiments/scenes/hanging_wind.toml --grid-line-bending --starts 1 \
-  --shear-spline "$knots" --tests "$tests" --quiet --out "$(dirname "$spline")"
+  --shear-spline "$knots" --residuals relative --tests "$tests" --quiet --out "$(dirname "$spline")"
 
 # Each scene with the grid-line law switched on (the first guess runs the scene as shipped: hinges),
 # and with the yarn level's node masses as well; each of the two with the spline shear law.
