@@ -22,22 +22,6 @@
 namespace wl {
 namespace {
 
-struct ParamSpec {
-  const char* key;
-  double FemMaterial::*field;
-};
-
-const ParamSpec kParams[] = {
-    {"warp_stretch_N_per_m", &FemMaterial::warp_stretch_N_per_m},
-    {"weft_stretch_N_per_m", &FemMaterial::weft_stretch_N_per_m},
-    {"shear_N_per_m", &FemMaterial::shear_N_per_m},
-    {"shear_lock_angle_rad", &FemMaterial::shear_lock_angle_rad},
-    {"shear_lock_exponent", &FemMaterial::shear_lock_exponent},
-    {"warp_bending_N_m", &FemMaterial::warp_bending_N_m},
-    {"weft_bending_N_m", &FemMaterial::weft_bending_N_m},
-    {"diagonal_bending_N_m", &FemMaterial::diagonal_bending_N_m},
-};
-
 constexpr double kLockAngleMax = 0.999 * std::numbers::pi / 2;
 
 std::vector<std::string> prefixed(const std::vector<std::string>& keys) {
@@ -50,7 +34,7 @@ std::vector<std::string> prefixed(const std::vector<std::string>& keys) {
 class CurveCost final : public ceres::CostFunction {
  public:
   CurveCost(const FitCurve& curve, const FemMaterial& base, const std::vector<std::string>& free,
-            const ContinuumTest& continuum, int* evaluations)
+            const ContinuumTest& continuum, bool relative, int* evaluations)
       : curve_(curve),
         base_(base),
         free_(free),
@@ -60,7 +44,11 @@ class CurveCost final : public ceres::CostFunction {
     double range = 0.0;
     for (double r : curve.target) range = std::max(range, std::abs(r));
     if (!(range > 0)) throw std::invalid_argument(test_name(curve.test) + ": the target curve is zero");
-    weight_ = 1.0 / (range * std::sqrt(double(curve.target.size())));
+    for (double r : curve.target) {
+      const double scale = relative ? std::abs(r) : range;
+      if (!(scale > 0)) throw std::invalid_argument(test_name(curve.test) + ": a zero response has no relative error");
+      weight_.push_back(1.0 / (scale * std::sqrt(double(curve.target.size()))));
+    }
     set_num_residuals(static_cast<int>(curve.target.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(free.size()));
   }
@@ -74,10 +62,10 @@ class CurveCost final : public ceres::CostFunction {
     if (!c.complete || c.points.size() != curve_.target.size()) return false;  // Ceres retries a smaller step
     const int n = static_cast<int>(free_.size());
     for (size_t i = 0; i < c.points.size(); ++i) {
-      residuals[i] = weight_ * (c.points[i].response - curve_.target[i]);
+      residuals[i] = weight_[i] * (c.points[i].response - curve_.target[i]);
       if (!want_j) continue;
       for (int k = 0; k < n; ++k)  // dr/dθ = w·dR/dp·p
-        jacobians[0][i * n + k] = weight_ * c.sensitivities[i][k] * std::exp(x[0][k]);
+        jacobians[0][i * n + k] = weight_[i] * c.sensitivities[i][k] * std::exp(x[0][k]);
     }
     return true;
   }
@@ -88,7 +76,7 @@ class CurveCost final : public ceres::CostFunction {
   std::vector<std::string> free_, keys_;
   const ContinuumTest& continuum_;
   int* evaluations_;
-  double weight_ = 1.0;
+  std::vector<double> weight_;  // per point
 };
 
 class Progress final : public ceres::IterationCallback {
@@ -115,17 +103,18 @@ struct Run {
 const std::vector<std::string>& fittable_parameters() {
   static const std::vector<std::string> keys = [] {
     std::vector<std::string> k;
-    for (const ParamSpec& p : kParams) k.push_back(p.key);
+    for (const FemParameterKey& p : fem_parameter_keys())
+      if (p.name != "areal_density_kg_per_m2") k.push_back(p.name);  // static tests cannot see mass
     return k;
   }();
   return keys;
 }
 
 double& material_value(FemMaterial& m, const std::string& key) {
-  for (const ParamSpec& p : kParams)
-    if (key == p.key) return m.*(p.field);
+  for (const FemParameterKey& p : fem_parameter_keys())
+    if (key == p.name && key != "areal_density_kg_per_m2") return p.value(m);
   std::string known;
-  for (const ParamSpec& p : kParams) known += std::string(known.empty() ? "" : ", ") + p.key;
+  for (const std::string& k : fittable_parameters()) known += (known.empty() ? "" : ", ") + k;
   throw std::invalid_argument("unknown FEM parameter '" + key + "', expected one of " + known);
 }
 
@@ -134,10 +123,13 @@ std::vector<std::string> informed_parameters(TestKind kind, const FemMaterial& g
     case TestKind::uniaxial_warp: return {"warp_stretch_N_per_m"};
     case TestKind::uniaxial_weft: return {"weft_stretch_N_per_m"};
     case TestKind::biaxial: return {"warp_stretch_N_per_m", "weft_stretch_N_per_m"};
-    case TestKind::shear:
+    case TestKind::shear: {
+      std::vector<std::string> keys{"shear_N_per_m"};
       if (guess.shear_lock_angle_rad > 0 && guess.shear_lock_exponent > 0)
-        return {"shear_N_per_m", "shear_lock_angle_rad", "shear_lock_exponent"};
-      return {"shear_N_per_m"};
+        keys.insert(keys.end(), {"shear_lock_angle_rad", "shear_lock_exponent"});
+      for (size_t i = 0; i < guess.shear_knots_rad.size(); ++i) keys.push_back(shear_knot_key(int(i)));
+      return keys;
+    }
     case TestKind::bending_warp: return {"warp_bending_N_m"};
     case TestKind::bending_weft: return {"weft_bending_N_m"};
     case TestKind::bending_diagonal:
@@ -184,6 +176,9 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     if (free[k] == "shear_lock_angle_rad") upper[k] = std::min(upper[k], std::log(kLockAngleMax));
   }
 
+  if (opt.residuals != "range" && opt.residuals != "relative")
+    throw std::invalid_argument("unknown residual scale '" + opt.residuals + "', expected range or relative");
+  const bool relative = opt.residuals == "relative";
   FitResult result;
   // The starts: the first guess, then seeded draws (in start order, so the seed fixes them).
   const int num_starts = std::max(1, opt.starts);
@@ -213,7 +208,8 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
       ceres::LossFunction* loss = nullptr;
       if (opt.loss == "huber") loss = new ceres::HuberLoss(0.05);
       else if (opt.loss == "cauchy") loss = new ceres::CauchyLoss(0.05);
-      run.problem->AddResidualBlock(new CurveCost(c, base, free, continuum, &evaluations[s]), loss, run.theta.data());
+      run.problem->AddResidualBlock(new CurveCost(c, base, free, continuum, relative, &evaluations[s]), loss,
+                                    run.theta.data());
     }
     for (int k = 0; k < n; ++k) {
       run.problem->SetParameterLowerBound(run.theta.data(), k, lower[k]);

@@ -1,7 +1,7 @@
 // Fit of the continuum parameters to yarn-level response curves with Ceres
 // (docs/calibration.md §4). The unknowns are θ = log p for the free [fem] keys,
 // bounded; one residual block per test curve,
-//   r_i = (R_fem(λ_i; p) − R_yarn(λ_i)) / (range_t·√n_t),
+//   r_i = (R_fem(λ_i; p) − R_yarn(λ_i)) / (range_t·√n_t)   (or |R_yarn(λ_i)| for range_t: relative),
 // range_t = max_i |R_yarn(λ_i)|, n_t the points of the curve, so every test
 // weighs the same whatever its units and the cost is ½ Σ_t (relative RMS_t)².
 // Jacobians are the exact IFT sensitivities of run_fem_test(). Several starts
@@ -37,6 +37,9 @@ struct FitOptions {
   double start_spread = 3.0;  // starts drawn in [p/spread, p·spread]
   double bound_factor = 1e3;  // bounds p0/factor … p0·factor (the lock angle: (0, π/2))
   std::string loss = "none";  // "none", "huber", "cauchy" (scale 0.05: 5 % of a curve's range)
+  // "range": r_i = (R_fem − R_yarn)/(range·√n); "relative": r_i = (R_fem − R_yarn)/(|R_yarn(λ_i)|·√n),
+  // every point's relative error, so the small loads of a stiffening curve weigh as much as its top.
+  std::string residuals = "range";
   int max_iterations = 100;
   bool progress = false;
   int threads = 0;  // starts run at once (0: one per hardware thread); the result does not depend on it

@@ -42,6 +42,8 @@ auto* fem_field(S& scene, const std::string& key) {
   if (key == kFemWarpBending) return &f.warp_bending_N_m;
   if (key == kFemWeftBending) return &f.weft_bending_N_m;
   if (key == kFemDiagonalBending) return &f.diagonal_bending_N_m;
+  for (int i = 0; i < FemSettings::kMaxShearKnots; ++i)
+    if (key == "fem." + shear_knot_key(i)) return &f.shear_knot_N_per_m[i];
   return decltype(&f.shear_N_per_m){nullptr};
 }
 

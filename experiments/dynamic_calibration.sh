@@ -14,8 +14,9 @@
 #     and the damped scene's whole 0.25 s, each at sdirk2 rtol 1e-4 (rtol 1e-5
 #     for the damped scene), the yarn level once per scene and the continuum
 #     with the first guess (hinges), the static and the dynamic fit, and the
-#     static fit with the yarn level's node masses ([fem] yarn_node_mass), and
-#     that with its shear raised as the modes say (3b), every
+#     static fit with the yarn level's node masses ([fem] yarn_node_mass),
+#     that with its shear raised as the modes say (3b), and the law with the
+#     spline shear (1b) without and with the yarn level's node masses, every
 #     distance beside both runs' time errors (experiments/compare.py).
 # Writes results/dynamic_calibration/ (OUT): the runs, fit/, summary.csv, summary.md and
 # validation.png (experiments/validation_table.py).
@@ -26,6 +27,8 @@ tools/setup.sh >/dev/null
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 out=${OUT:-results/dynamic_calibration}
 static=${STATIC:-results/calibration/grid_lines/params.toml}
+spline=${SPLINE:-results/calibration/grid_lines_spline/params.toml}
+knots=0.1,0.2,0.3,0.4
 py=/usr/bin/python3
 mkdir -p "$out/scenes"
 start=$(date +%s)
@@ -33,13 +36,22 @@ start=$(date +%s)
 tests=uniaxial-warp,uniaxial-weft,biaxial,shear,bending-warp,bending-weft,bending-diagonal,bending-antidiagonal
 [ -f "$static" ] || build/weavelab calibrate experiments/scenes/hanging_wind.toml --grid-line-bending --starts 1 \
   --tests "$tests" --quiet --out "$(dirname "$static")"
+# 1b. The same battery fitted by the spline shear law (docs/models.md §6.4.1), knots at $knots rad,
+# each point weighed by its relative error (docs/calibration.md §5.2);
+# reused when $SPLINE exists.
+[ -f "$spline" ] || build/weavelab calibrate experiments/scenes/hanging_wind.toml --grid-line-bending --starts 1 \
+  --shear-spline "$knots" --residuals relative --tests "$tests" --quiet --out "$(dirname "$spline")"
 
 # Each scene with the grid-line law switched on (the first guess runs the scene as shipped: hinges),
-# and with the yarn level's node masses as well.
-mkdir -p "$out/scenes_mass"
+# and with the yarn level's node masses as well; each of the two with the spline shear law.
+mkdir -p "$out/scenes_mass" "$out/scenes_spline" "$out/scenes_spline_mass"
 for s in hanging_wind_damped hanging_wind swing_17 oblique_wind_17 held_off_centre_17; do
   { cat "experiments/scenes/$s.toml"; printf '\n[fem]\ngrid_line_bending = true\n'; } > "$out/scenes/$s.toml"
   { cat "$out/scenes/$s.toml"; printf 'yarn_node_mass = true\n'; } > "$out/scenes_mass/$s.toml"
+  for m in "" _mass; do
+    { cat "$out/scenes$m/$s.toml"; printf 'shear_law = "spline"\nshear_knots_rad = [%s]\n' "$knots"; } \
+      > "$out/scenes_spline$m/$s.toml"
+  done
 done
 
 run() {  # run OUT_DIR SCENE ARGS...: reused when OUT_DIR/summary.json exists
@@ -90,7 +102,7 @@ for spec in hanging_wind_damped:0.25:1e-5 hanging_wind:0.5:1e-4 swing_17:0.3:1e-
   [ "$s" = hanging_wind_damped ] && yarn=$out/target
   run "$yarn" "$out/scenes/$s.toml" --model yarn --integrator sdirk2 --rtol "$rtol" --duration "$duration"
   pairs+=("$s=$yarn")
-  for kind in first_guess static dynamic yarnmass shear128; do
+  for kind in first_guess static dynamic yarnmass shear128 spline spline_mass; do
     scene=$out/scenes/$s.toml params=()
     case $kind in
       first_guess) scene=experiments/scenes/$s.toml ;;
@@ -98,6 +110,8 @@ for spec in hanging_wind_damped:0.25:1e-5 hanging_wind:0.5:1e-4 swing_17:0.3:1e-
       yarnmass) scene=$out/scenes_mass/$s.toml params=(--fem-params "$static") ;;
       shear128) scene=$out/scenes_mass/$s.toml params=(--fem-params "$out/params_shear128.toml") ;;
       dynamic) params=(--fem-params "$out/fit/params.toml") ;;
+      spline) scene=$out/scenes_spline/$s.toml params=(--fem-params "$spline") ;;
+      spline_mass) scene=$out/scenes_spline_mass/$s.toml params=(--fem-params "$spline") ;;
     esac
     run "$out/fem_${kind}_$s" "$scene" --model fem "${params[@]}" --integrator sdirk2 --rtol "$rtol" --duration "$duration"
     $py experiments/compare.py "$yarn" "$out/fem_${kind}_$s" --out "$out/distance_${kind}_$s.csv" > "$out/compare_${kind}_$s.txt"

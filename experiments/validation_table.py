@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The validation table and chart of experiments/dynamic_calibration.sh: for
 each scene and continuum (first guess, static fit, dynamic fit, static fit with
-the yarn level's node masses, and that with its shear raised by 1.28), the mean and
+the yarn level's node masses, that with its shear raised by 1.28, and the
+spline shear law without and with those masses), the mean and
 worst per-frame RMS distance to the yarn level beside both runs' estimated
 time errors (summary.json "time_error", docs/models.md §7.8), and the
 distance against time.
@@ -23,7 +24,8 @@ import weavelab_io as wio  # noqa: E402
 
 KINDS = [("first_guess", "first guess (hinges)"), ("static", "static fit (grid lines)"),
          ("dynamic", "dynamic fit (grid lines)"), ("yarnmass", "static fit, yarn node mass"),
-         ("shear128", "yarn node mass, shear x1.28")]
+         ("shear128", "yarn node mass, shear x1.28"), ("spline", "spline shear (grid lines)"),
+         ("spline_mass", "spline shear, yarn node mass")]
 
 
 def mean_time_error(run):

@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
   st->add_option("--speed-bound", st_bound, "Max node speed of a bounded run [m/s]")->capture_default_str();
 
   wl::CalibrateConfig cal;
-  std::string cal_scene, cal_tests, cal_free, cal_out;
+  std::string cal_scene, cal_tests, cal_free, cal_out, cal_shear_spline;
   std::vector<std::string> cal_ladders, cal_validate;
   bool cal_quiet = false;
   auto* calibrate = app.add_subcommand(
@@ -199,6 +199,11 @@ int main(int argc, char** argv) {
   calibrate->add_option("--starts", cal.fit.starts, "Fit starts (the first guess, then seeded draws)")
       ->capture_default_str();
   calibrate->add_option("--seed", cal.fit.seed, "Seed of the start draws")->capture_default_str();
+  calibrate
+      ->add_option("--residuals", cal.fit.residuals,
+                   "Scale of each point's residual: range (the curve's largest response) or relative (the "
+                   "yarn level's response at that load, so small loads weigh as much as large ones)")
+      ->capture_default_str();
   calibrate->add_option("--loss", cal.fit.loss, "Robust loss per test curve: none, huber, cauchy")
       ->capture_default_str();
   calibrate->add_flag("--sliding", cal.sliding,
@@ -210,6 +215,10 @@ int main(int argc, char** argv) {
   calibrate->add_flag("--diagonal-bending", cal.diagonal_bending,
                       "Fit the 45° hinges' own bending stiffness ([fem] diagonal_bending_N_m, informed by the "
                       "bending-diagonal and bending-antidiagonal tests)");
+  calibrate->add_option("--shear-spline", cal_shear_spline,
+                        "ANGLES: fit the spline shear law ([fem] shear_law = \"spline\", shear_knots_rad = ANGLES, "
+                        "comma-separated increasing shear angles in (0, 1.5] rad, e.g. 0.1,0.2,0.3,0.4); its knot "
+                        "values start at shear_N_per_m");
   calibrate->add_option("--validate", cal_validate, "Scene to validate the calibrated continuum on (repeatable)");
   std::string cal_resolution = "controlled";
   double cal_rtol = 1e-4;
@@ -396,6 +405,7 @@ int main(int argc, char** argv) {
           throw std::invalid_argument("--ladder: got '" + l + "', expected TEST=λ1,λ2,... (e.g. shear=0.1,0.2,0.4)");
         cal.ladders[l.substr(0, eq)] = split_numbers(l.substr(eq + 1), "--ladder " + l.substr(0, eq));
       }
+      if (calibrate->count("--shear-spline")) cal.shear_knots_rad = split_numbers(cal_shear_spline, "--shear-spline");
       if (calibrate->count("--patch") && cal.patch < 1)
         throw std::invalid_argument("--patch: got " + std::to_string(cal.patch) + ", expected a number of crossings");
       for (const auto& v : cal_validate) cal.validate.emplace_back(v);

@@ -96,6 +96,13 @@ Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
   s.fem.weft_bending_N_m = m.weft_bending_N_m;
   s.fem.diagonal_bending_N_m.reset();
   if (m.diagonal_bending_N_m > 0) s.fem.diagonal_bending_N_m = m.diagonal_bending_N_m;
+  s.fem.shear_law = m.shear_knots_rad.empty() ? FemSettings::ShearLaw::linear_lock : FemSettings::ShearLaw::spline;
+  s.fem.shear_knots_rad = m.shear_knots_rad;
+  for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) {
+    s.fem.shear_knot_N_per_m[i].reset();
+    if (i < static_cast<int>(m.shear_knots_rad.size()) && m.shear_knot_N_per_m[i] > 0)
+      s.fem.shear_knot_N_per_m[i] = m.shear_knot_N_per_m[i];
+  }
   return s;
 }
 
@@ -106,6 +113,15 @@ double mean(const std::vector<double>& x) {
 }
 double maximum(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end()); }
 double cpu_per_step(const RecordedRun& r) { return r.stats.steps > 0 ? r.cpu_s / r.stats.steps : 0.0; }
+
+// The parameter file holds the knot values; the law and its knot angles belong in the scene.
+std::string shear_law_note(const FemMaterial& m) {
+  if (m.shear_knots_rad.empty()) return "linear_lock";
+  std::ostringstream k;
+  k.precision(17);
+  for (size_t i = 0; i < m.shear_knots_rad.size(); ++i) k << (i ? ", " : "") << m.shear_knots_rad[i];
+  return "fitted with [fem] shear_law = \"spline\" and shear_knots_rad = [" + k.str() + "]: set them in the scene";
+}
 
 }  // namespace
 
@@ -149,10 +165,22 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
     if (std::none_of(p.tests.begin(), p.tests.end(), [&](const TestSpec& t) { return test_name(t) == canonical; }))
       throw std::invalid_argument("--ladder " + name + ": the test is not among --tests");
   }
+  if (!c.shear_knots_rad.empty()) {
+    const auto& k = c.shear_knots_rad;
+    if (k.size() > FemSettings::kMaxShearKnots)
+      throw std::invalid_argument("--shear-spline: got " + std::to_string(k.size()) + " knots, expected at most " +
+                                  std::to_string(FemSettings::kMaxShearKnots));
+    for (size_t i = 0; i < k.size(); ++i)
+      if (!(k[i] > (i ? k[i - 1] : 0.0)) || k[i] > 1.5)
+        throw std::invalid_argument("--shear-spline: got " + std::to_string(k[i]) + " at position " +
+                                    std::to_string(i + 1) + ", expected increasing shear angles in (0, 1.5] rad");
+  }
   FemMaterial probe;
   for (const std::string& key : c.fit.free) (void)material_value(probe, key);  // unknown: invalid_argument
   if (c.fit.loss != "none" && c.fit.loss != "huber" && c.fit.loss != "cauchy")
     throw std::invalid_argument("--loss: got '" + c.fit.loss + "', expected none, huber or cauchy");
+  if (c.fit.residuals != "range" && c.fit.residuals != "relative")
+    throw std::invalid_argument("--residuals: got '" + c.fit.residuals + "', expected range or relative");
   if (c.fit.starts < 1) throw std::invalid_argument("--starts: need at least 1, got " + std::to_string(c.fit.starts));
   (void)fem_material(p.scene);  // a bad parameter file is reported before anything runs
   for (const auto& v : c.validate) {
@@ -191,6 +219,9 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   FemMaterial guess = fem_material(p.scene);
   if (c.diagonal_bending && guess.diagonal_bending_N_m <= 0)  // start where the law is off: the mean
     guess.diagonal_bending_N_m = 0.5 * (guess.warp_bending_N_m + guess.weft_bending_N_m);
+  if (!c.shear_knots_rad.empty()) guess.shear_knots_rad = c.shear_knots_rad;
+  for (size_t i = 0; i < guess.shear_knots_rad.size(); ++i)  // start where the law is linear: k_i = k_sh
+    if (guess.shear_knot_N_per_m[i] <= 0) guess.shear_knot_N_per_m[i] = guess.shear_N_per_m;
   FemTestPatches patches(p.test_scene);  // kept over the fit's curve evaluations
   const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
     return patches.run(m, t, keys);
@@ -331,6 +362,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
        {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene" : "false"},
        {"grid_line_bending",
         c.grid_line_bending ? "fitted with [fem] grid_line_bending = true: set it in the scene" : "false"},
+       {"shear_law", shear_law_note(calibrated)},
        {"residual_rms_relative", rms.str()},
        {"areal_density", "total yarn mass of the scene over the crossing grid's area"},
        {"created", utc_now()}});
@@ -343,6 +375,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   j.set("sliding", c.sliding);
   j.set("border_strip", c.border_strip);
   j.set("grid_line_bending", c.grid_line_bending);
+  j.set("shear_knots_rad", Json(calibrated.shear_knots_rad));
   Json params = Json::array();
   for (const FittedParameter& fp : out.fit.parameters) {
     Json e = Json::object();
@@ -405,6 +438,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   fit.set("iterations", out.fit.iterations);
   fit.set("curve_evaluations", out.fit.evaluations);
   fit.set("loss", c.fit.loss);
+  fit.set("residuals", c.fit.residuals);
   fit.set("seed", static_cast<int>(c.fit.seed));
   j.set("fit", std::move(fit));
   Json timing = Json::object();

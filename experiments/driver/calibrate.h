@@ -30,6 +30,9 @@ struct CalibrateConfig {
   bool border_strip = false;                           // continuum with [fem] border_strip (tests and validation)
   bool grid_line_bending = false;                      // continuum with [fem] grid_line_bending (tests and validation)
   bool diagonal_bending = false;  // fit the 45° hinges' own stiffness ([fem] diagonal_bending_N_m), from the mean
+  // Non-empty: fit the spline shear law with these knot angles ([fem] shear_law = "spline"), its knot
+  // values starting at shear_N_per_m; empty: the scene's own shear law.
+  std::vector<double> shear_knots_rad;
   FitOptions fit;
   std::vector<std::filesystem::path> validate;  // scenes to validate on
   Resolution resolution;                        // of the validation runs (both sides)
@@ -61,8 +64,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& config, const CalibrateP
 // yarn level's total mass: Σ_yarns ρ·(length) / ((wefts−1)(warps−1)L²).
 double matched_areal_density(const Scene& scene);
 
-// The scene with every [fem] material value set from `m` (no parameter file)
-// and [fem] border_strip set to `border_strip`.
+// The scene with every [fem] material value and the shear law set from `m` (no
+// parameter file) and [fem] border_strip set to `border_strip`.
 Scene with_material(Scene s, const FemMaterial& m, bool border_strip);
 
 }  // namespace wl

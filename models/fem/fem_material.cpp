@@ -7,29 +7,27 @@
 #include <numbers>
 #include <sstream>
 #include <utility>
+#include <vector>
 
 #include <toml++/toml.h>
 
 namespace wl {
 namespace {
 
-struct Key {
-  const char* name;
-  double FemMaterial::*field;
-  const char* expected;
-};
-
-const Key kKeys[] = {
-    {"areal_density_kg_per_m2", &FemMaterial::areal_density_kg_per_m2, "a number > 0 (kg/m²)"},
-    {"warp_stretch_N_per_m", &FemMaterial::warp_stretch_N_per_m, "a number > 0 (N/m)"},
-    {"weft_stretch_N_per_m", &FemMaterial::weft_stretch_N_per_m, "a number > 0 (N/m)"},
-    {"shear_N_per_m", &FemMaterial::shear_N_per_m, "a number > 0 (N/m)"},
-    {"shear_lock_angle_rad", &FemMaterial::shear_lock_angle_rad, "a number > 0 (rad)"},
-    {"shear_lock_exponent", &FemMaterial::shear_lock_exponent, "a number > 0"},
-    {"warp_bending_N_m", &FemMaterial::warp_bending_N_m, "a number > 0 (N·m)"},
-    {"weft_bending_N_m", &FemMaterial::weft_bending_N_m, "a number > 0 (N·m)"},
-    {"diagonal_bending_N_m", &FemMaterial::diagonal_bending_N_m, "a number > 0 (N·m)"},
-};
+template <double FemMaterial::*F>
+double& field(FemMaterial& m) {
+  return m.*F;
+}
+template <int I>
+double& knot(FemMaterial& m) {
+  return m.shear_knot_N_per_m[I];
+}
+template <int... I>
+void add_knots(std::vector<FemParameterKey>& keys, std::integer_sequence<int, I...>) {
+  (keys.push_back(
+       {shear_knot_key(I), "a number > 0 (N/m), with as many knots in the scene's [fem] shear_knots_rad", &knot<I>}),
+   ...);
+}
 
 [[noreturn]] void fail(const std::string& file, int line, const std::string& key, const std::string& value,
                        const std::string& expected) {
@@ -38,6 +36,25 @@ const Key kKeys[] = {
 }
 
 }  // namespace
+
+const std::vector<FemParameterKey>& fem_parameter_keys() {
+  static const std::vector<FemParameterKey> keys = [] {
+    std::vector<FemParameterKey> k{
+        {"areal_density_kg_per_m2", "a number > 0 (kg/m²)", &field<&FemMaterial::areal_density_kg_per_m2>},
+        {"warp_stretch_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::warp_stretch_N_per_m>},
+        {"weft_stretch_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::weft_stretch_N_per_m>},
+        {"shear_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::shear_N_per_m>},
+        {"shear_lock_angle_rad", "a number > 0 (rad)", &field<&FemMaterial::shear_lock_angle_rad>},
+        {"shear_lock_exponent", "a number > 0", &field<&FemMaterial::shear_lock_exponent>},
+        {"warp_bending_N_m", "a number > 0 (N·m)", &field<&FemMaterial::warp_bending_N_m>},
+        {"weft_bending_N_m", "a number > 0 (N·m)", &field<&FemMaterial::weft_bending_N_m>},
+        {"diagonal_bending_N_m", "a number > 0 (N·m)", &field<&FemMaterial::diagonal_bending_N_m>},
+    };
+    add_knots(k, std::make_integer_sequence<int, FemSettings::kMaxShearKnots>());
+    return k;
+  }();
+  return keys;
+}
 
 FemMaterial default_fem_material(const Scene& s) {
   const double L = s.spacing_m, R = s.radius_m, area = std::numbers::pi * R * R;
@@ -83,12 +100,15 @@ FemMaterial parse_fem_parameters(const std::string& text, const std::string& sou
       if (!node.is_table()) fail(source, line, key, "a non-table", "a table of free-form notes");
       continue;
     }
-    const Key* spec = nullptr;
-    for (const Key& c : kKeys)
+    const FemParameterKey* spec = nullptr;
+    int index = 0;
+    for (const FemParameterKey& c : fem_parameter_keys()) {
       if (key == c.name) spec = &c;
+      if (!spec) ++index;
+    }
     if (!spec) {
       std::string known;
-      for (const Key& c : kKeys) known += std::string(known.empty() ? "" : ", ") + c.name;
+      for (const FemParameterKey& c : fem_parameter_keys()) known += (known.empty() ? "" : ", ") + c.name;
       fail(source, line, key, "an unknown key", "one of " + known + " or [provenance]");
     }
     const auto v = node.value<double>();
@@ -97,7 +117,12 @@ FemMaterial parse_fem_parameters(const std::string& text, const std::string& sou
     if (!v || !std::isfinite(*v) || *v <= 0) fail(source, line, key, written.str(), spec->expected);
     if (key == "shear_lock_angle_rad" && *v >= std::numbers::pi / 2)
       fail(source, line, key, written.str(), "a shear angle in (0, π/2) rad");
-    m.*(spec->field) = *v;
+    const int knot_index = index - (static_cast<int>(fem_parameter_keys().size()) - FemSettings::kMaxShearKnots);
+    if (knot_index >= static_cast<int>(m.shear_knots_rad.size()))
+      fail(source, line, key, written.str(),
+           "no such key: the scene's shear law has " + std::to_string(m.shear_knots_rad.size()) +
+               " knots (set [fem] shear_law = \"spline\" and shear_knots_rad in the scene)");
+    spec->value(m) = *v;
   }
   return m;
 }
@@ -115,8 +140,9 @@ void write_fem_parameter_file(const std::string& path, const FemMaterial& m,
   std::ostringstream out;
   out.precision(17);
   out << "# weavelab FEM parameters (models/fem/fem_material.h)\n";
-  for (const Key& k : kKeys)
-    if (m.*(k.field) > 0) out << k.name << " = " << m.*(k.field) << "\n";
+  FemMaterial copy = m;
+  for (const FemParameterKey& k : fem_parameter_keys())
+    if (k.value(copy) > 0) out << k.name << " = " << k.value(copy) << "\n";
   if (!provenance.empty()) {
     out << "\n[provenance]\n";
     for (const auto& [key, text] : provenance) out << key << " = " << toml::value<std::string>(text) << "\n";
@@ -134,6 +160,7 @@ void write_fem_parameter_file(const std::string& path, const FemMaterial& m,
 FemMaterial fem_material(const Scene& s) {
   FemMaterial m = default_fem_material(s);
   const FemSettings& f = s.fem;
+  m.shear_knots_rad = f.shear_knots_rad;  // the law first: the parameter file's knot values must fit it
   if (!f.parameter_file.empty()) m = read_fem_parameter_file(f.parameter_file, m);
   auto set = [](double& out, const std::optional<double>& v) {
     if (v) out = *v;
@@ -147,6 +174,9 @@ FemMaterial fem_material(const Scene& s) {
   set(m.warp_bending_N_m, f.warp_bending_N_m);
   set(m.weft_bending_N_m, f.weft_bending_N_m);
   set(m.diagonal_bending_N_m, f.diagonal_bending_N_m);
+  for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) set(m.shear_knot_N_per_m[i], f.shear_knot_N_per_m[i]);
+  for (size_t i = 0; i < m.shear_knots_rad.size(); ++i)  // an absent knot value: the stiffness at 0
+    if (m.shear_knot_N_per_m[i] <= 0) m.shear_knot_N_per_m[i] = m.shear_N_per_m;
   return m;
 }
 

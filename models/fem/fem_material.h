@@ -23,13 +23,15 @@
 //      "an absent value is computed, or taken from the parameter file").
 //
 // Parameter file format (TOML, written by calibration): top-level keys equal to
-// the [fem] key names above, each a number > 0, any subset, e.g.
+// the [fem] key names above (and shear_knot<i>_N_per_m for the knots of the
+// scene's spline shear law), each a number > 0, any subset, e.g.
 //   warp_stretch_N_per_m = 612.5
 //   shear_N_per_m = 0.8
 // plus an optional free-form table [provenance] (ignored). Any other key, or a
 // value that is not a number > 0, is an error "<file>:<line>: key '<key>': got
 // <value>, expected <what>".
 #pragma once
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -47,7 +49,20 @@ struct FemMaterial {
   double shear_lock_exponent = 0.0;   // ≤ 0: no locking
   double warp_bending_N_m = 0.0, weft_bending_N_m = 0.0;
   double diagonal_bending_N_m = 0.0;  // ≤ 0: off (45° hinges take the mean of warp and weft)
+  // Shear law (docs/models.md §6.4.1): empty = linear then lock; else the spline law's knot angles
+  // γ_1 < … < γ_n (from [fem] shear_knots_rad) and the tangent stiffness at each (≤ 0: shear_N_per_m).
+  std::vector<double> shear_knots_rad;
+  std::array<double, FemSettings::kMaxShearKnots> shear_knot_N_per_m{};
 };
+
+// Every numeric parameter of the continuum by its [fem] key (without "fem."), in the order of the
+// parameter file, areal density first; shared by the parameter file and the fit.
+struct FemParameterKey {
+  std::string name;
+  std::string expected;  // for error messages
+  double& (*value)(FemMaterial&);
+};
+const std::vector<FemParameterKey>& fem_parameter_keys();
 
 // Scene keys of the material parameters, as terms name them in
 // Term::parameter_keys() ("fem." + the [fem] key).
@@ -60,6 +75,7 @@ inline constexpr const char* kFemWarpBending = "fem.warp_bending_N_m";
 inline constexpr const char* kFemWeftBending = "fem.weft_bending_N_m";
 inline constexpr const char* kFemDiagonalBending = "fem.diagonal_bending_N_m";
 inline constexpr const char* kFemArealDensity = "fem.areal_density_kg_per_m2";
+// The spline shear law's knot values: "fem." + shear_knot_key(i).
 
 class FemParameterError : public std::invalid_argument {  // bad input: exit 2
  public:

@@ -133,8 +133,18 @@ void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
     terms.push_back(std::move(t));
   }
   if (on.shear) {
-    auto t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
-                                                material_.shear_lock_exponent);
+    std::unique_ptr<InPlaneShearTerm> t;
+    if (material_.shear_knots_rad.empty()) {
+      t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
+                                             material_.shear_lock_exponent);
+    } else {  // the spline law (docs/models.md §6.4.1); an absent knot value is k_sh
+      std::vector<double> values;
+      for (size_t i = 0; i < material_.shear_knots_rad.size(); ++i)
+        values.push_back(material_.shear_knot_N_per_m[i] > 0 ? material_.shear_knot_N_per_m[i]
+                                                             : material_.shear_N_per_m);
+      t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
+                                             material_.shear_lock_exponent, material_.shear_knots_rad, values);
+    }
     for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
     terms.push_back(std::move(t));
   }
@@ -359,6 +369,10 @@ std::map<std::string, std::string> FemModel::describe() const {
       " shear_lock_exponent=" + format(p.shear_lock_exponent) + " warp_bending_N_m=" + format(p.warp_bending_N_m) +
       " weft_bending_N_m=" + format(p.weft_bending_N_m);
   if (p.diagonal_bending_N_m > 0) m["fem_parameters"] += " diagonal_bending_N_m=" + format(p.diagonal_bending_N_m);
+  for (size_t i = 0; i < p.shear_knots_rad.size(); ++i)
+    m["fem_parameters"] += " " + shear_knot_key(int(i)) + "=" +
+                           format(p.shear_knot_N_per_m[i] > 0 ? p.shear_knot_N_per_m[i] : p.shear_N_per_m) + " (at " +
+                           format(p.shear_knots_rad[i]) + " rad)";
   return m;
 }
 

@@ -59,6 +59,9 @@
 //     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m,
 //     diagonal_bending_N_m
 //       optional numbers > 0
+//     shear_law = "linear_lock" (default) | "spline"; with "spline": shear_knots_rad, 1–6 increasing
+//       angles in (0, 1.5] (default [0.1, 0.2, 0.3, 0.4]), and shear_knot1_N_per_m … shear_knot<n>_N_per_m,
+//       optional numbers > 0 (absent: shear_N_per_m); neither key without the spline law
 //     border_strip, grid_line_bending, yarn_node_mass   optional booleans (default false); grid_line_bending
 //       needs the grid mesh (no mesh_file), yarn_node_mass also stride 1
 //       (absent = computed / taken from parameter_file)
@@ -277,6 +280,34 @@ void read_pose(TableReader& top, Scene& s) {
   p->finish();
 }
 
+// shear_law = "linear_lock" | "spline"; the spline law's knot angles and the tangent stiffness at
+// each (docs/models.md §6.4.1). Knots and knot values belong to the spline law only.
+void read_shear_law(TableReader& f, FemSettings& fem) {
+  int law = 0;
+  if (f.read_choice("shear_law", law, {"linear_lock", "spline"}))
+    fem.shear_law = law == 0 ? FemSettings::ShearLaw::linear_lock : FemSettings::ShearLaw::spline;
+  const bool spline = fem.shear_law == FemSettings::ShearLaw::spline;
+  const std::string knots_expected = "an array of 1 to " + std::to_string(FemSettings::kMaxShearKnots) +
+                                     " increasing shear angles in (0, 1.5] rad, with fem.shear_law = \"spline\"";
+  std::vector<double> knots;
+  if (f.read_number_array("shear_knots_rad", knots, knots_expected, [&](const std::vector<double>& k) {
+        if (!spline || k.empty() || k.size() > FemSettings::kMaxShearKnots) return false;
+        for (size_t i = 0; i < k.size(); ++i)
+          if (!(k[i] > (i ? k[i - 1] : 0.0)) || k[i] > 1.5) return false;
+        return true;
+      }))
+    fem.shear_knots_rad = knots;
+  else if (spline) fem.shear_knots_rad = {0.1, 0.2, 0.3, 0.4};
+  for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) {
+    const std::string key = shear_knot_key(i);
+    const std::string expected = "a number > 0 (N/m), the tangent shear stiffness at knot " + std::to_string(i + 1) +
+                                 " of fem.shear_knots_rad (fem.shear_law = \"spline\" with " + std::to_string(i + 1) +
+                                 " knots or more)";
+    const bool allowed = i < static_cast<int>(fem.shear_knots_rad.size());
+    f.read_number(key, fem.shear_knot_N_per_m[i], expected, [&](double x) { return allowed && x > 0; });
+  }
+}
+
 void read_fem(TableReader& top, Scene& s) {
   auto f = top.subtable("fem");
   if (!f) return;
@@ -318,6 +349,7 @@ void read_fem(TableReader& top, Scene& s) {
   f->read_number("warp_bending_N_m", fem.warp_bending_N_m, "a number > 0 (N·m)", positive);
   f->read_number("weft_bending_N_m", fem.weft_bending_N_m, "a number > 0 (N·m)", positive);
   f->read_number("diagonal_bending_N_m", fem.diagonal_bending_N_m, "a number > 0 (N·m)", positive);
+  read_shear_law(*f, fem);
   f->finish();
 }
 

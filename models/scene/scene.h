@@ -65,6 +65,9 @@ struct Handle {
   double stop_s = std::numeric_limits<double>::infinity();  // ∞: moves until the run ends
 };
 
+// The [fem] key of the spline shear law's i-th knot value (0-based): "shear_knot<i+1>_N_per_m".
+inline std::string shear_knot_key(int i) { return "shear_knot" + std::to_string(i + 1) + "_N_per_m"; }
+
 struct FemSettings {
   int stride = 1;              // vertices every `stride`-th crossing
   std::string mesh_file;       // optional VTU with per-vertex rest UV ("" = build from the grid)
@@ -76,6 +79,13 @@ struct FemSettings {
   std::optional<double> shear_lock_exponent;
   std::optional<double> warp_bending_N_m, weft_bending_N_m;  // per unit width
   std::optional<double> diagonal_bending_N_m;                // 45° hinges; absent: the mean of warp and weft
+  // Shear law (docs/models.md §6.4): linear then lock, or a tangent stiffness interpolated between
+  // knots before the lock (§6.4.1). The knot angles γ_1 < … < γ_n of the spline law and the tangent
+  // stiffness at each (absent: shear_N_per_m).
+  enum class ShearLaw { linear_lock, spline } shear_law = ShearLaw::linear_lock;
+  static constexpr int kMaxShearKnots = 6;
+  std::vector<double> shear_knots_rad;  // spline law only (the scene's default: 0.1, 0.2, 0.3, 0.4 rad)
+  std::array<std::optional<double>, kMaxShearKnots> shear_knot_N_per_m;
   bool border_strip = false;       // bars for the border yarns' outer half spacing (terms/border_stretch.h)
   bool grid_line_bending = false;  // bending of the grid lines instead of hinges (terms/grid_line_bending.h)
   // Vertex masses in the proportions of the yarn level's node masses instead of a third of each

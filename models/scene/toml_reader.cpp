@@ -192,20 +192,28 @@ bool TableReader::read_choice(std::string_view key, int& out, const std::vector<
   return true;
 }
 
-bool TableReader::read_vec3(std::string_view key, std::array<double, 3>& out, const std::string& expected) {
+bool TableReader::read_number_array(std::string_view key, std::vector<double>& out, const std::string& expected,
+                                    const std::function<bool(const std::vector<double>&)>& ok) {
   const toml::node* n = get(key);
   if (!n) return false;
   const auto* a = n->as_array();
-  if (!a || a->size() != 3) fail_at(*n, key, expected);
-  std::array<double, 3> v{};
-  for (size_t k = 0; k < 3; ++k) {
-    const toml::node& e = *a->get(k);
-    if (const auto* i = e.as_integer()) v[k] = static_cast<double>(i->get());
-    else if (const auto* f = e.as_floating_point()) v[k] = f->get();
+  if (!a) fail_at(*n, key, expected);
+  std::vector<double> v;
+  for (const toml::node& e : *a) {
+    if (const auto* i = e.as_integer()) v.push_back(static_cast<double>(i->get()));
+    else if (const auto* f = e.as_floating_point()) v.push_back(f->get());
     else fail_at(*n, key, expected);
-    if (!std::isfinite(v[k])) fail_at(*n, key, expected);
+    if (!std::isfinite(v.back())) fail_at(*n, key, expected);
   }
-  out = v;
+  if (ok && !ok(v)) fail_at(*n, key, expected);
+  out = std::move(v);
+  return true;
+}
+
+bool TableReader::read_vec3(std::string_view key, std::array<double, 3>& out, const std::string& expected) {
+  std::vector<double> v;
+  if (!read_number_array(key, v, expected, [](const std::vector<double>& x) { return x.size() == 3; })) return false;
+  std::copy(v.begin(), v.end(), out.begin());
   return true;
 }
 

@@ -66,6 +66,9 @@ class TableReader {
                    const std::function<bool(const std::string&)>& ok = {});
   // One of `names`; returns its index through `out`.
   bool read_choice(std::string_view key, int& out, const std::vector<std::string>& names);
+  // An array of finite numbers (integers accepted) for which `ok` holds.
+  bool read_number_array(std::string_view key, std::vector<double>& out, const std::string& expected,
+                         const std::function<bool(const std::vector<double>&)>& ok = {});
   bool read_vec3(std::string_view key, std::array<double, 3>& out, const std::string& expected);
   bool read_string_array(std::string_view key, std::vector<std::string>& out, const std::string& expected);
 

@@ -63,17 +63,26 @@ TEST(VirtualTests, FemBendingAtSmallCurvatureIsTheBendingStiffness) {
 TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
   // Shear at 0.2 and 0.4 rad: below and past the lock angle (0.52 rad here... and its stiffening).
   // Every test of the wider battery too, with the diagonal stiffness on (0.3 of the mean, so that
-  // the 45° hinges differ from the law without it); then the bending tests with grid-line bending.
-  for (const bool grid_lines : {false, true}) {
+  // the 45° hinges differ from the law without it); then the bending tests with grid-line bending;
+  // then the shear test with the spline shear law, softening over its four knots (docs/models.md §6.4.1).
+  for (const int law : {0, 1, 2}) {
+    const bool grid_lines = law == 1, spline = law == 2;
     Scene patch = material_test_scene(hanging_wind(), 7);
     patch.fem.grid_line_bending = grid_lines;
     FemMaterial m = default_fem_material(patch);
-    if (!grid_lines) m.diagonal_bending_N_m = 0.15 * (m.warp_bending_N_m + m.weft_bending_N_m);
+    if (law == 0) m.diagonal_bending_N_m = 0.15 * (m.warp_bending_N_m + m.weft_bending_N_m);
+    if (spline) {
+      m.shear_knots_rad = {0.1, 0.2, 0.3, 0.35};
+      m.shear_knot_N_per_m = {0.9 * m.shear_N_per_m, 0.7 * m.shear_N_per_m, 0.35 * m.shear_N_per_m,
+                              0.2 * m.shear_N_per_m};
+    }
     for (const std::string& name : test_names()) {
       const TestKind kind = test_kind(name);
       if (grid_lines && !clamps_rotation(kind)) continue;
-      const TestSpec test{kind,
-                          {default_ladder(kind, 7, patch.spacing_m)[3], default_ladder(kind, 7, patch.spacing_m)[7]}};
+      if (spline && kind != TestKind::shear) continue;
+      // (the spline law at 0.4 and 0.55 rad, beyond its last knot, where every knot value acts)
+      const std::vector<double> ladder = default_ladder(kind, 7, patch.spacing_m);
+      const TestSpec test{kind, {ladder[spline ? 7 : 3], ladder[spline ? 10 : 7]}};
       const std::vector<std::string> keys = informed_parameters(kind, m);
       std::vector<std::string> prefixed;
       for (const auto& k : keys) prefixed.push_back("fem." + k);
@@ -90,7 +99,8 @@ TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
           const double exact = c.sensitivities[i][k];
           EXPECT_NE(exact, 0.0) << name << " " << keys[k];
           EXPECT_NEAR(exact, fd, 1e-5 * std::abs(fd) + 1e-9 * std::abs(c.points[i].response) / p)
-              << name << " " << keys[k] << " at " << c.points[i].load << (grid_lines ? " (grid lines)" : "");
+              << name << " " << keys[k] << " at " << c.points[i].load << (grid_lines ? " (grid lines)" : "")
+              << (spline ? " (spline shear)" : "");
         }
       }
     }
