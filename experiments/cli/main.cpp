@@ -22,6 +22,7 @@
 #include "experiments/driver/run.h"
 #include "experiments/driver/run_settings.h"
 #include "experiments/driver/stability.h"
+#include "experiments/driver/uniaxial_pull.h"
 #include "experiments/driver/work_precision.h"
 #include "experiments/output/run_reader.h"
 #include "integrators/integrator.h"
@@ -342,6 +343,17 @@ int main(int argc, char** argv) {
   modes->add_option("--out", modes_out, "Output folder (default results/modes/<scene name>)");
   modes->add_flag("--quiet", modes_quiet, "No progress on stderr");
 
+  std::string pull_scene, pull_strains = "0.01,0.02,0.05,0.1", pull_direction = "y", pull_out;
+  auto* pull = app.add_subcommand("pull", "Uniaxial strip test of a flat cloth at yarn level: pull.csv, pull.json");
+  pull->add_option("scene", pull_scene, "Scene file (TOML), flat pose")->required();
+  pull->add_option("--strains", pull_strains, "Increasing strain ladder")->capture_default_str();
+  pull->add_option("--direction", pull_direction, "Pull along x (knit: course-wise) or y (knit: wale-wise)")
+      ->check(CLI::IsMember({"x", "y"}))
+      ->capture_default_str();
+  pull->add_option("--out", pull_out, "Output folder (default results/pull/<scene name>)");
+  bool pull_hold_z = false;
+  pull->add_flag("--hold-z", pull_hold_z, "Hold every node's z at rest: an in-plane test (no buckling or curl)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -532,6 +544,20 @@ int main(int argc, char** argv) {
         std::cerr << "weavelab: modes: " << e.what() << "\n";
         return 1;
       }
+    }
+    if (*pull) {
+      wl::PullConfig pc;
+      pc.strains = split_numbers(pull_strains, "--strains");
+      pc.direction = pull_direction[0];
+      pc.hold_z = pull_hold_z;
+      pc.out_dir = wl::output_folder(pull->count("--out") ? std::optional(pull_out) : std::nullopt,
+                                     std::filesystem::path("results/pull") / std::filesystem::path(pull_scene).stem());
+      const wl::Scene scene = wl::load_scene(pull_scene);
+      const wl::PullResult r = wl::pull_command(scene, pc);
+      std::fprintf(stderr, "weavelab: pull: %zu of %zu rungs, yarn length per area %.6g 1/m; results in %s%s%s\n",
+                   r.points.size(), pc.strains.size() + 1, r.yarn_length_per_area_per_m, pc.out_dir.string().c_str(),
+                   r.complete ? "" : "; stopped: ", r.message.c_str());
+      return r.complete ? 0 : 1;
     }
     if (*fit) {
       fitc.scene_path = fit_scene;

@@ -10,6 +10,12 @@ KnitGraph::KnitGraph(const KnitLayout& layout) : layout_(layout) {
   build_contacts();
   build_yarns();
   set_coordinates();
+  // The period's images move; the coordinates stay those of the generated loops.
+  const Vec3 scale(layout_.period_scale[0], layout_.period_scale[1], 1.0);
+  for (KnitYarn& y : yarns_) {
+    for (KnitVisit& v : y.visits) v.dx = v.dx.cwiseProduct(scale);
+    y.period_dx = y.period_dx.cwiseProduct(scale);
+  }
 }
 
 int KnitGraph::contact_index(int r, int c, int s) const {

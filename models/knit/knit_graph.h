@@ -27,6 +27,9 @@ struct KnitLayout {
   double course_spacing = 8e-4;  // C: loop height [m]
   double thickness = 5e-4;       // t: the stitch segment goes from −t to +t through the cloth [m]
   bool periodic = false;         // one tile, yarns closed in both directions
+  // periodic: the tile's period is (wales·W·period_scale[0], courses·C·period_scale[1])
+  // while its loops (coordinates, rest lengths) keep the generated W and C (docs/models.md §11.3.1).
+  std::array<double, 2> period_scale{1.0, 1.0};
   // Whether the loop (course, wale) is a purl stitch (its yarn passes behind the
   // loop below), else a knit stitch (courses ≥ 1; course 0 is cast on).
   std::function<bool(int course, int wale)> purl;

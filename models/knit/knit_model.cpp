@@ -7,6 +7,7 @@
 
 #include "models/common/yarn_damper.h"
 #include "models/knit/image_term.h"
+#include "models/knit/knit_boundary.h"
 #include "models/knit/knit_rest_shape.h"
 #include "models/knit/terms/stitch_length.h"
 #include "models/knit/terms/stitch_roll.h"
@@ -73,13 +74,21 @@ KnitLayout knit_layout(const Scene& scene, bool tile) {
   return L;
 }
 
-std::unique_ptr<KnitModel> KnitModel::tile(const Scene& scene) {
-  return std::unique_ptr<KnitModel>(new KnitModel(scene, true));
+std::unique_ptr<KnitModel> KnitModel::tile(const Scene& scene, const std::array<double, 2>& period_scale) {
+  return std::unique_ptr<KnitModel>(new KnitModel(scene, true, period_scale));
 }
 
 KnitModel::KnitModel(const Scene& scene) : KnitModel(scene, false) {}
 
-KnitModel::KnitModel(const Scene& scene, bool tile) : scene_(scene), tile_(tile), graph_(knit_layout(scene, tile)) {
+namespace {
+KnitLayout with_period_scale(KnitLayout layout, const std::array<double, 2>& period_scale) {
+  layout.period_scale = period_scale;
+  return layout;
+}
+}  // namespace
+
+KnitModel::KnitModel(const Scene& scene, bool tile, const std::array<double, 2>& period_scale)
+    : scene_(scene), tile_(tile), graph_(with_period_scale(knit_layout(scene, tile), period_scale)) {
   // Frozen coordinates of the open cloth: the one-yarn nodes (below the first
   // and above the last course) and the contacts of the first and last wale, as
   // the woven model freezes its outer ring (docs/models.md §11.1).
@@ -105,7 +114,11 @@ KnitModel::KnitModel(const Scene& scene, bool tile) : scene_(scene), tile_(tile)
   add_segment_terms();
   if (scene.terms.bending) add_bending();
   add_stitch_terms();
-  if (!tile_) apply_pose();
+  if (!tile_) {
+    apply_pose();
+    if (auto handles = knit_handles(graph_, scene_, q0_)) terms_.push_back(std::move(handles));
+    fixed_ = knit_pinned_dofs(graph_, scene_);
+  }
   finalize();
 }
 
@@ -358,7 +371,7 @@ std::map<std::string, std::string> KnitModel::describe() const {
     const KnitRestShape& rest = relaxed_tile(scene_);
     std::ostringstream r;
     r << rest.courses << " x " << rest.wales << " tile, residual " << rest.residual_N << " N after " << rest.iterations
-      << " Newton steps";
+      << " Newton steps, net force on its period " << rest.period_force_N[0] << ", " << rest.period_force_N[1] << " N";
     m["rest_shape"] = r.str();
   }
   return m;

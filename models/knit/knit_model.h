@@ -25,7 +25,8 @@ class KnitModel : public TermModel {
   // The pattern's periodic tile at the generated geometry with the terms the
   // rest shape relaxes: stretch, bending and the stitch-length penalty (no
   // roll, inertia, loads or damping; docs/models.md §11.3).
-  static std::unique_ptr<KnitModel> tile(const Scene& scene);
+  // `period_scale` scales the tile's period, not its loops (docs/models.md §11.3.1).
+  static std::unique_ptr<KnitModel> tile(const Scene& scene, const std::array<double, 2>& period_scale = {1.0, 1.0});
 
   std::unique_ptr<Model> clone() const override { return std::make_unique<KnitModel>(*this); }
   std::string name() const override { return "yarn"; }
@@ -47,7 +48,7 @@ class KnitModel : public TermModel {
   std::vector<int> gauge_dofs() const;
 
  private:
-  KnitModel(const Scene& scene, bool tile);
+  KnitModel(const Scene& scene, bool tile, const std::array<double, 2>& period_scale = {1.0, 1.0});
   void set_generated_state();
   void apply_rest_shape();
   void apply_pose();

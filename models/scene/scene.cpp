@@ -27,7 +27,8 @@
 //     "default" is YarnType{} of scene.h unless defined here.
 //   [knit]                   knit scenes only (docs/models.md §11)
 //     roll_stiffness_N, stitch_length_stiffness_N   ≥ 0
-//   A knit scene takes no [[pins]], [[handles]], [wind], [fem] or [[obstacles]] (not supported yet).
+//   A knit scene takes no [wind], [fem] or [[obstacles]] (not supported yet); its [[pins]] and
+//   [[handles]] name stitch contacts: node = [i, j], 0 ≤ i ≤ courses (contact row), 0 ≤ j < 2·wales.
 //   [contact]
 //     shear_model, friction_model      "gong" | "cirio"
 //     shear_modulus_Pa, friction_coefficient, friction_stiffness_N_per_m,
@@ -35,7 +36,7 @@
 //     tanh_sharpness_per_m, lock_exponent, lock_sigma                         > 0
 //   [pose]
 //     kind = "flat" | "upright";  height_m (any number)
-//   [[pins]]      node = [i, j]                 (0 ≤ i < wefts, 0 ≤ j < warps)
+//   [[pins]]      node = [i, j]                 (0 ≤ i < wefts, 0 ≤ j < warps; knits: see [knit])
 //   [[handles]]   node = [i, j] (required); stiffness_N_per_m > 0;
 //                 velocity_m_per_s = [x, y, z] (the target's prescribed motion), start_s ≥ 0,
 //                 stop_s > start_s (both only with velocity_m_per_s)
@@ -354,15 +355,19 @@ void read_fem(TableReader& top, Scene& s) {
 }
 
 // node = [i, j] inside the grid, not used twice, on the FEM lattice when stride > 1.
+// A knit scene's node = [i, j] names stitch contact j of contact row i (docs/models.md §11.6).
 NodeRef read_node(TableReader& t, const Scene& s, std::map<std::pair<int, int>, std::string>& taken) {
+  const int rows = s.knit ? s.knit->courses + 1 : s.wefts, columns = s.knit ? 2 * s.knit->wales : s.warps;
   const std::string expected =
-      "[i, j] with integers 0 ≤ i < cloth.wefts" + eq(s.wefts) + " and 0 ≤ j < cloth.warps" + eq(s.warps);
+      s.knit ? "[i, j], a stitch contact: integers 0 ≤ i ≤ cloth.pattern.courses" + eq(s.knit->courses) +
+                   " (contact row) and 0 ≤ j < 2·cloth.pattern.wales" + eq(columns) + " (contact column)"
+             : "[i, j] with integers 0 ≤ i < cloth.wefts" + eq(s.wefts) + " and 0 ≤ j < cloth.warps" + eq(s.warps);
   const toml::node* n = t.get("node");
   if (!n) t.fail_missing("node", expected);
   const auto* a = n->as_array();
   if (!a || a->size() != 2 || !a->get(0)->as_integer() || !a->get(1)->as_integer()) t.fail_at(*n, "node", expected);
   const long long i = a->get(0)->as_integer()->get(), j = a->get(1)->as_integer()->get();
-  if (i < 0 || i >= s.wefts || j < 0 || j >= s.warps) t.fail_at(*n, "node", expected);
+  if (i < 0 || i >= rows || j < 0 || j >= columns) t.fail_at(*n, "node", expected);
   const int st = s.fem.stride;
   if (st > 1 && (i % st != 0 || j % st != 0))
     t.fail_at(*n, "node", "a node on the FEM lattice: i and j multiples of fem.stride" + eq(st));
@@ -421,7 +426,7 @@ void read_knit(TableReader& top, Scene& s) {
     k->finish();
   }
   if (!s.knit) return;
-  for (const char* table : {"pins", "handles", "wind", "fem", "obstacles"})
+  for (const char* table : {"wind", "fem", "obstacles"})
     if (const toml::node* n = top.table().get(table))
       top.source().fail(line_of(*n), table, "[" + std::string(table) + "]",
                         "no [" + std::string(table) + "] in a knit scene (not supported for knits yet)");

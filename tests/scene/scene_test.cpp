@@ -306,6 +306,15 @@ TEST(SceneParse, KnitPatternsAndTheirKeys) {
   EXPECT_DOUBLE_EQ(s.knit->roll_stiffness_N, 2e-5);
   EXPECT_DOUBLE_EQ(s.knit->course_spacing_m, 0.8 * s.spacing_m);
   EXPECT_FALSE(parse_scene("[cloth.pattern]\nkind = \"plain\"\n", "ok.toml").knit.has_value());
+  const Scene held = parse_scene(
+      "[cloth.pattern]\nkind = \"stockinette\"\ncourses = 4\nwales = 3\n"
+      "[[pins]]\nnode = [0, 5]\n[[handles]]\nnode = [4, 0]\nstiffness_N_per_m = 50\n",
+      "ok.toml");
+  ASSERT_EQ(held.pins.size(), 1u);
+  EXPECT_EQ(held.pins[0].i, 0);
+  EXPECT_EQ(held.pins[0].j, 5);
+  ASSERT_EQ(held.handles.size(), 1u);
+  EXPECT_EQ(held.handles[0].node.i, 4);
 }
 
 TEST(SceneErrors, KnitPatternsMustTileAndKnitKeysNeedAKnit) {
@@ -324,7 +333,14 @@ TEST(SceneErrors, KnitPatternsMustTileAndKnitKeysNeedAKnit) {
       {pattern + "\"plain\"\ncourses = 4\n", 3, "cloth.pattern.courses", "kind"},
       {pattern + "\"twill\"\n[knit]\nroll_stiffness_N = 1e-5\n", 4, "knit.roll_stiffness_N", "woven scene"},
       {pattern + "\"garter\"\n[knit]\nroll_stiffness_N = -1\n", 4, "knit.roll_stiffness_N", "≥ 0"},
-      {pattern + "\"stockinette\"\n[[pins]]\nnode = [0, 0]\n", 3, "pins", "knit scene"},
+      {pattern + "\"stockinette\"\n[wind]\nair_density_kg_per_m3 = 1\n", 3, "wind", "knit scene"},
+      // Knit pins and handles name stitch contacts: row 0 … courses, column 0 … 2·wales − 1.
+      {pattern + "\"stockinette\"\ncourses = 4\nwales = 3\n[[pins]]\nnode = [5, 0]\n", 6, "pins[0].node",
+       "0 ≤ i ≤ cloth.pattern.courses (= 4)"},
+      {pattern + "\"stockinette\"\ncourses = 4\nwales = 3\n[[handles]]\nnode = [0, 6]\n", 6, "handles[0].node",
+       "0 ≤ j < 2·cloth.pattern.wales (= 6)"},
+      {pattern + "\"garter\"\n[[pins]]\nnode = [0, 1]\n[[handles]]\nnode = [0, 1]\n", 6, "handles[0].node",
+       "not already pinned"},
   };
   for (const Case& c : cases) expect_error(c.text, c.line, c.key, c.expected);
 }
