@@ -83,6 +83,8 @@ def differences(a, b):
     bad = []
     for folder, _, files in os.walk(a):
         for f in files:
+            if f == ".weavelab.lock":  # the writer's lock: its process id
+                continue
             pa = os.path.join(folder, f)
             pb = os.path.join(b, os.path.relpath(pa, a))
             if not os.path.exists(pb):
