@@ -19,28 +19,33 @@ void BackwardEuler::initialize(Model& model, double t0, const Vec& q0, const Vec
   solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs(), step_solver_options());
 }
 
-void BackwardEuler::form_step_matrix(double h) {
-  const int nnz = static_cast<int>(a_.nonZeros());
-  const double* m = ev_.mass.valuePtr();
-  const double* k = ev_.dfdq.valuePtr();
-  const double* d = ev_.dfdv.valuePtr();
-  double* a = a_.valuePtr();
-  const double h2 = h * h;
-  for (int i = 0; i < nnz; ++i) a[i] = m[i] - h * d[i] - h2 * k[i];
+void BackwardEuler::form_step_matrix(double h, const SparseMatrix* mass) {
+  form_step(ev_, {.dfdv = -h, .dfdq = -h * h, .constant_mass = mass}, a_, nullptr);
 }
 
 StepResult BackwardEuler::step_linear(double h, int* iters) {
   // A mass that does not depend on q (the continuum's) is assembled once: ev_.mass keeps it.
-  const bool mass_known = have_mass_ && !model_->mass_depends_on_q();
-  model_->evaluate(t_, q_, v_, kForce | kDfdq | kDfdv | (mass_known ? 0u : kMass), ev_);
+  if (!have_mass_ && !model_->mass_depends_on_q()) model_->evaluate(t_, q_, v_, kMass, ev_);
   have_mass_ = true;
+  const bool mass_known = !model_->mass_depends_on_q();
+  // A = M − hD − h²K and r = f + hKv₀; the sensitivities need K and D apart.
+  const StepWeights weights{.mass = 1.0,
+                            .dfdv = -h,
+                            .dfdq = -h * h,
+                            .rhs_dfdq = h,
+                            .w = &v_,
+                            .constant_mass = mass_known ? &ev_.mass : nullptr};
+  if (dq_dp_.cols() > 0) {
+    model_->evaluate(t_, q_, v_, kForce | kDfdq | kDfdv | (mass_known ? 0u : kMass), ev_);
+    form_step(ev_, weights, a_, &rhs_);
+  } else {
+    model_->evaluate_step(t_, q_, v_, weights, ev_, a_, rhs_);
+  }
   ++stats_.rhs_evals;
   ++stats_.jac_evals;
-  form_step_matrix(h);
   ++stats_.linear_setups;
   if (!solver_->factorize(a_)) return {Outcome::diverged, solver_->failure()};
-  rhs_.noalias() = ev_.dfdq * v_;
-  rhs_ = h * (ev_.force + h * rhs_);
+  rhs_ *= h;
   if (!solver_->solve(rhs_, dv_)) return {Outcome::diverged, solver_->failure()};
   ++stats_.linear_solves;
   if (dq_dp_.cols() > 0) propagate_linear_sensitivities(h, dv_);
@@ -71,8 +76,7 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
   residual(v, g);
   const double g0 = std::max(g.norm(), 1e-300);
   for (int it = 1; it <= opt_.newton_max_iters; ++it) {
-    ev_.mass = m0;
-    form_step_matrix(h);
+    form_step_matrix(h, &m0);
     ++stats_.linear_setups;
     if (!solver_->factorize(a_))
       return {Outcome::diverged, "Newton matrix: " + solver_->failure(), FailureCause::newton};

@@ -39,7 +39,8 @@ class BackwardEuler : public Integrator {
  private:
   StepResult step_linear(double h, int* iters);
   StepResult step_newton(double h, int* iters);
-  void form_step_matrix(double h);  // a_ = M − h D − h² K from ev_
+  // a_ = M − hD − h²K from ev_ (M: `mass` when given, else ev_.mass).
+  void form_step_matrix(double h, const SparseMatrix* mass = nullptr);
   // Sensitivity updates (backward_euler_sensitivity.cpp, docs/models.md §9.2), called
   // after the step's solve and before the state moves on.
   void propagate_linear_sensitivities(double h, const Vec& dv);

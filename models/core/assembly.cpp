@@ -36,6 +36,29 @@ std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colour
   return colour;
 }
 
+// A[slot] += c_m m + c_v d + c_q k over an element's n×n block (d, m: null
+// where the term provides none).
+void add_step_block(const StepWeights& c, int n, const int* slots, const double* k, const double* d, const double* m,
+                    double* a) {
+  for (int ab = 0; ab < n * n; ++ab) {
+    if (slots[ab] < 0) continue;
+    double x = c.dfdq * k[ab];
+    if (d) x += c.dfdv * d[ab];
+    if (m) x += c.mass * m[ab];
+    a[slots[ab]] += x;
+  }
+}
+
+// out[s[a]] += Σ_b block(a, b) w_b over the DoF rows of a column-major n×n block.
+void add_block_product(int n, const int* s, const double* block, const double* w, Vec& out) {
+  for (int a = 0; a < n; ++a) {
+    if (!is_dof(s[a])) continue;
+    double x = 0.0;
+    for (int b = 0; b < n; ++b) x += block[a + n * b] * w[b];
+    out[s[a]] += x;
+  }
+}
+
 }  // namespace
 
 Assembly::Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std::pair<int, int>>& extra)
@@ -132,19 +155,23 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
                         SparseMatrix* mass) const {
   const Term& term = *plan.term;
   const int n = plan.n;
-  const bool want_k = req.dfdq && dfdq;
-  const bool want_d = req.dfdv && dfdv && term.has_velocity_jacobian();
-  const bool want_m = req.mass && mass && term.provides_mass();
-  double* kv = want_k ? dfdq->valuePtr() : nullptr;
-  double* dv = want_d ? dfdv->valuePtr() : nullptr;
-  double* mv = want_m ? mass->valuePtr() : nullptr;
+  const StepWeights* step = dfdq ? req.step : nullptr;
+  const bool want_k = step || (req.dfdq && dfdq);
+  const bool want_d = term.has_velocity_jacobian() && (step ? step->dfdv != 0.0 : req.dfdv && dfdv);
+  const bool want_m = term.provides_mass() && (step ? !step->constant_mass : req.mass && mass);
+  double* kv = want_k && !step ? dfdq->valuePtr() : nullptr;
+  double* dv = want_d && !step ? dfdv->valuePtr() : nullptr;
+  double* mv = want_m && !step ? mass->valuePtr() : nullptr;
+  double* av = step ? dfdq->valuePtr() : nullptr;
+  const Vec* w = step && step->rhs_dfdq != 0.0 && req.dfdq_w ? step->w : nullptr;
 
   auto run_range = [&](int begin, int end) {
-    thread_local std::vector<double> buf;  // q, v, f; dfdq, dfdv, mass (kept: no allocation per evaluation)
-    buf.resize(static_cast<size_t>(3 * n + 3 * n * n));
+    thread_local std::vector<double> buf;  // q, v, w, f; dfdq, dfdv, mass (kept: no allocation per evaluation)
+    buf.resize(static_cast<size_t>(4 * n + 3 * n * n));
     double* ql = buf.data();
     double* vl = ql + n;
-    double* fl = vl + n;
+    double* wl = vl + n;
+    double* fl = wl + n;
     double* kl = fl + n;
     double* dl = kl + n * n;
     double* ml = dl + n * n;
@@ -165,8 +192,16 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
       term.evaluate(e, ql, vl, out);
       for (int a = 0; a < n; ++a)
         if (is_dof(s[a])) f[s[a]] += fl[a];
-      if (!kv && !dv && !mv) continue;
       const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;
+      if (av) {  // A += c_m M_e + c_v D_e + c_q K_e, docs/models.md §7.2
+        add_step_block(*step, n, slots, kl, want_d ? dl : nullptr, want_m ? ml : nullptr, av);
+        if (w) {
+          for (int a = 0; a < n; ++a) wl[a] = is_dof(s[a]) ? (*w)[s[a]] : 0.0;
+          add_block_product(n, s.data(), kl, wl, *req.dfdq_w);
+        }
+        continue;
+      }
+      if (!kv && !dv && !mv) continue;
       auto scatter = [&](double* global, const double* local) {
         for (int ab = 0; ab < n * n; ++ab)
           if (slots[ab] >= 0) global[slots[ab]] += local[ab];

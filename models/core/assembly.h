@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "models/core/model.h"
 #include "models/core/term.h"
 
 namespace wl {
@@ -23,6 +24,12 @@ struct AssemblyRequest {
   bool dfdv = false;
   bool mass = false;
   TermFilter filter = TermFilter::all;
+  // One pass for the implicit step (Model::evaluate_step): each element adds
+  // step->mass·M_e + step->dfdv·D_e + step->dfdq·K_e into the `dfdq` matrix
+  // argument (A; `dfdv` and `mass` are not written) and, with step->rhs_dfdq
+  // ≠ 0, K_e·w_e into *dfdq_w. The flags above are then ignored.
+  const StepWeights* step = nullptr;
+  Vec* dfdq_w = nullptr;
 };
 
 class Assembly {

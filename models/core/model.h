@@ -34,6 +34,17 @@ struct Evaluation {
   SparseMatrix mass;  // M(q)
 };
 
+// What Model::evaluate_step forms in one assembly pass (docs/design.md §3.3):
+//   A = mass·M + dfdv·∂f/∂v + dfdq·∂f/∂q   (pattern()-shaped),
+//   r = f + rhs_dfdq·(∂f/∂q)·w.
+// With constant_mass (a model whose M does not depend on q, assembled before)
+// A starts from mass·constant_mass's values and the terms' mass blocks are not formed.
+struct StepWeights {
+  double mass = 1.0, dfdv = 0.0, dfdq = 0.0, rhs_dfdq = 0.0;
+  const Vec* w = nullptr;  // required when rhs_dfdq ≠ 0
+  const SparseMatrix* constant_mass = nullptr;
+};
+
 // State (docs/design.md §3.4): a model holds its history (friction anchors,
 // changed only by accept_step) and the auxiliaries of its last evaluation
 // (contact normals, friction's frozen F_u and F_n, changed only by evaluate).
@@ -66,6 +77,12 @@ class Model {
   // Otherwise it first prepares the auxiliaries at (t, q, v), which the
   // members documented as "of the last evaluation" then read.
   virtual void evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) = 0;
+  // The implicit step's matrix `a` and right-hand side `r` at (t, q, v) with
+  // the weights `w` (StepWeights); `scratch` is reused between calls and
+  // holds the force f afterwards (its matrices are not meaningful). The
+  // default evaluates M, ∂f/∂q and ∂f/∂v and combines them (form_step).
+  virtual void evaluate_step(double t, const Vec& q, const Vec& v, const StepWeights& w, Evaluation& scratch,
+                             SparseMatrix& a, Vec& r);
   // Potential energy of the conservative terms.
   virtual double potential_energy(const Vec& q) const = 0;
   // History update after an accepted step of size h ending at (t, q, v).
@@ -136,6 +153,10 @@ class Model {
 
 // Prepares `out` with pattern-shaped matrices and a sized force vector.
 void allocate_evaluation(const Model& model, Evaluation& out);
+// A and (when r is given) r of StepWeights from an evaluation holding f, ∂f/∂q,
+// ∂f/∂v and (unless w.constant_mass is given) M: what Model::evaluate_step
+// forms in one pass.
+void form_step(const Evaluation& ev, const StepWeights& w, SparseMatrix& a, Vec* r);
 // Kinetic energy ½ vᵀ M(q) v; `scratch` is reused between calls.
 double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v, Evaluation& scratch);
 

@@ -11,6 +11,28 @@ void allocate_evaluation(const Model& model, Evaluation& out) {
   out.mass = model.pattern();
 }
 
+void Model::evaluate_step(double t, const Vec& q, const Vec& v, const StepWeights& w, Evaluation& scratch,
+                          SparseMatrix& a, Vec& r) {
+  evaluate(t, q, v, kForce | kDfdq | kDfdv | (w.constant_mass ? 0u : kMass), scratch);
+  form_step(scratch, w, a, &r);
+}
+
+void form_step(const Evaluation& ev, const StepWeights& w, SparseMatrix& a, Vec* r) {
+  const Eigen::Index nnz = a.nonZeros();
+  const double* m = (w.constant_mass ? *w.constant_mass : ev.mass).valuePtr();
+  const double* k = ev.dfdq.valuePtr();
+  const double* d = ev.dfdv.valuePtr();
+  double* av = a.valuePtr();
+  for (Eigen::Index i = 0; i < nnz; ++i) av[i] = w.mass * m[i] + w.dfdv * d[i] + w.dfdq * k[i];
+  if (!r) return;
+  if (w.rhs_dfdq == 0.0) {
+    *r = ev.force;
+    return;
+  }
+  r->noalias() = ev.dfdq * *w.w;
+  *r = ev.force + w.rhs_dfdq * *r;
+}
+
 double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v, Evaluation& scratch) {
   if (scratch.force.size() != model.num_dofs()) allocate_evaluation(model, scratch);
   model.evaluate(t, q, v, kMass, scratch);
@@ -60,6 +82,11 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
     assembly_->add_stage(0, q, v, constants_, req, out.force, nullptr, nullptr, &out.mass);
     return;
   }
+  assemble_stages(t, q, v, req, out, &out.dfdq, &out.dfdv, &out.mass);
+}
+
+void TermModel::assemble_stages(double t, const Vec& q, const Vec& v, const AssemblyRequest& req, Evaluation& out,
+                                SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) {
   EvalContext ctx{t, &q, &v, nullptr};
   prepare_auxiliary(t, q, v, ctx);
   bool has_stage1 = false;
@@ -67,16 +94,43 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
     if (term->stage() == 0) term->prepare(ctx);
     else has_stage1 = true;
   }
-  assembly_->add_stage(0, q, v, constants_, req, out.force, &out.dfdq, &out.dfdv, &out.mass);
-  after_stage(0, q, v, req, out);
+  assembly_->add_stage(0, q, v, constants_, req, out.force, dfdq, dfdv, mass);
+  if (!req.step) after_stage(0, q, v, req, out);
   if (has_stage1) {
     stage0_force_ = out.force;
     ctx.force_so_far = &stage0_force_;
     for (auto& term : terms_)
       if (term->stage() == 1) term->prepare(ctx);
-    assembly_->add_stage(1, q, v, constants_, req, out.force, &out.dfdq, &out.dfdv, &out.mass);
+    assembly_->add_stage(1, q, v, constants_, req, out.force, dfdq, dfdv, mass);
   }
-  after_stage(1, q, v, req, out);
+  if (!req.step) after_stage(1, q, v, req, out);
+}
+
+// One pass (docs/design.md §3.3) unless the model adds derivatives of its
+// auxiliaries after a stage (single_pass_step() false): those need ∂f/∂q and
+// ∂f/∂v apart.
+void TermModel::evaluate_step(double t, const Vec& q, const Vec& v, const StepWeights& w, Evaluation& scratch,
+                              SparseMatrix& a, Vec& r) {
+  if (!single_pass_step()) {
+    Model::evaluate_step(t, q, v, w, scratch, a, r);
+    return;
+  }
+  if (scratch.force.size() != num_dofs_) allocate_evaluation(*this, scratch);
+  scratch.force.setZero();
+  r.setZero(num_dofs_);  // (∂f/∂q)·w first
+  double* av = a.valuePtr();
+  const Eigen::Index nnz = a.nonZeros();
+  if (w.constant_mass) {
+    const double* m = w.constant_mass->valuePtr();
+    for (Eigen::Index k = 0; k < nnz; ++k) av[k] = w.mass * m[k];
+  } else {
+    std::fill(av, av + nnz, 0.0);
+  }
+  AssemblyRequest req;
+  req.step = &w;
+  req.dfdq_w = &r;
+  assemble_stages(t, q, v, req, scratch, &a, nullptr, nullptr);
+  r = scratch.force + w.rhs_dfdq * r;
 }
 
 void TermModel::gather_local(const Term& term, int e, const Vec& q, const Vec& v, double* lq, double* lv) const {

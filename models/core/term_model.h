@@ -18,6 +18,8 @@ class TermModel : public Model {
   std::span<const int> fixed_dofs() const override { return fixed_; }
   const SparseMatrix& pattern() const override { return assembly_->pattern(); }
   void evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) override;
+  void evaluate_step(double t, const Vec& q, const Vec& v, const StepWeights& w, Evaluation& scratch, SparseMatrix& a,
+                     Vec& r) override;
   double potential_energy(const Vec& q) const override;
   void accept_step(double t, const Vec& q, const Vec& v, double h) override;
   bool constrains_steps() const override;
@@ -63,6 +65,10 @@ class TermModel : public Model {
   virtual void after_stage(int /*stage*/, const Vec& /*q*/, const Vec& /*v*/, const AssemblyRequest& /*req*/,
                            Evaluation& /*out*/) {}
 
+  // Whether evaluate_step may form the step matrix in one pass: false for a
+  // model whose after_stage adds to ∂f/∂q or ∂f/∂v (it needs them apart).
+  virtual bool single_pass_step() const { return true; }
+
   // Derived constructors fill num_dofs_, q0_, v0_, fixed_, constants_ and
   // terms_, then call finalize().
   void finalize();
@@ -78,6 +84,10 @@ class TermModel : public Model {
   std::vector<std::pair<int, int>> extra_pattern_;  // entries the pattern holds besides the terms' blocks
 
  private:
+  // Auxiliaries, stage 0, stage 1 (docs/design.md §3.4) into out.force and the given matrices.
+  void assemble_stages(double t, const Vec& q, const Vec& v, const AssemblyRequest& req, Evaluation& out,
+                       SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass);
+
   std::unique_ptr<Assembly> assembly_;
   Vec stage0_force_;
 };

@@ -51,6 +51,7 @@ class YarnModel : public TermModel {
   void prepare_auxiliary(double t, const Vec& q, const Vec& v, EvalContext& ctx) override;
   // The chain of ∂F_n/∂q and ∂F_u/∂q into the Jacobians (exact_contact_jacobian).
   void after_stage(int stage, const Vec& q, const Vec& v, const AssemblyRequest& req, Evaluation& out) override;
+  bool single_pass_step() const override { return !chain_; }
 
  private:
   struct Segment {

@@ -7,7 +7,7 @@
 
 #include "integrators/integrator.h"
 #include "models/model_factory.h"
-#include "tests/support/test_scenes.h"
+#include "tests/support/advanced_model.h"
 
 namespace wl {
 namespace {
@@ -52,23 +52,9 @@ void expect_identical(const Work& a, const Work& b, const std::string& what) {
   EXPECT_TRUE(a.q_after == b.q_after) << what;
 }
 
-// The model after 20 be-linear steps of the 6×6 hanging cloth (history set).
-std::unique_ptr<Model> advanced_model(const std::string& model_name, const std::string& extra_toml, Vec& q, Vec& v) {
-  const Scene scene = parse_scene(test::hanging_cloth_toml(6, 0.02) + extra_toml, "clone.toml");
-  auto model = make_model(scene, model_name);
-  auto integrator = make_integrator("be-linear");
-  IntegratorOptions opt;
-  opt.dt = 1e-3;
-  integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), opt);
-  EXPECT_EQ(integrator->advance_to(scene.duration_s).outcome, Outcome::ok);
-  q = integrator->q();
-  v = integrator->v();
-  return model;
-}
-
 void check_clones(const std::string& model_name, const std::string& extra_toml = "") {
   Vec q, v;
-  auto original = advanced_model(model_name, extra_toml, q, v);
+  auto original = test::advanced_model(model_name, extra_toml, q, v);
   constexpr int kWorkers = 4;
   // Worker k starts from the advanced state nudged by k·10 µm along a fixed pattern.
   std::vector<Vec> starts;
