@@ -17,7 +17,6 @@ void BackwardEuler::initialize(Model& model, double t0, const Vec& q0, const Vec
   have_mass_ = false;
   a_ = model.pattern();
   solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs(), step_solver_options());
-  sensitivity_solver_.reset();
 }
 
 void BackwardEuler::form_step_matrix(double h) {

@@ -44,18 +44,16 @@ class BackwardEuler : public Integrator {
   // after the step's solve and before the state moves on.
   void propagate_linear_sensitivities(double h, const Vec& dv);
   void propagate_newton_sensitivities(double h, const Vec& q0, const Vec& v0, const SparseMatrix& m0);
-  // be-newton's sensitivity solves: one direct factorization of A₁ per step
-  // (symbolic analysis once per run), shared by every parameter column.
-  bool factorize_sensitivity_matrix();
+  // x = a_⁻¹ b by iterative refinement on the factorization in hand (of a_ or
+  // of a nearby matrix); refactorizes a_ when that does not converge.
+  bool solve_step_matrix(const Vec& b, Vec& x);
 
   Variant variant_;
   Evaluation ev_;
   SparseMatrix a_;
   std::unique_ptr<SparseSolver> solver_;
-  Vec rhs_, dv_;                                      // be-linear's right-hand side and solution, kept between steps
-  std::unique_ptr<SparseSolver> sensitivity_solver_;  // direct, for A₁ (be-newton with sensitivities)
-  Vec sens_dfdp_, sens_rhs_, sens_x_, sens_mw_;       // per-step work, kept between steps
-  bool have_mass_ = false;                            // ev_.mass holds M (be-linear: kept when M does not depend on q)
+  Vec rhs_, dv_;            // be-linear's right-hand side and solution, kept between steps
+  bool have_mass_ = false;  // ev_.mass holds M (be-linear: kept when M does not depend on q)
 };
 
 }  // namespace wl
