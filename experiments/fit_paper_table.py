@@ -48,7 +48,8 @@ def main():
     if len(sys.argv) != 2:
         fail("usage: fit_paper_table.py DIR")
     d = sys.argv[1]
-    runs = {os.path.basename(os.path.dirname(p)): load(p) for p in glob.glob(os.path.join(d, "*", "fit.json"))}
+    found = glob.glob(os.path.join(d, "*", "fit.json")) + glob.glob(os.path.join(d, "*", "start_*", "fit.json"))
+    runs = {os.path.relpath(os.path.dirname(p), d): load(p) for p in found}
     protocol = [runs.get(f"protocol_{n}") for n in (5, 10, 25)]
     randoms = [r for name, r in sorted(runs.items()) if name.startswith("random_")]
     slides = sorted(((n, r) for n, r in runs.items() if n.startswith("slide_")), key=lambda x: (len(x[1]["parameters"]), x[0]))
