@@ -65,7 +65,7 @@ def slide_table(slides):
     """μ where yarns slide: per fit, each free parameter's truth, start, value and
     standard error, with the fit's convergence, cost and time error budget."""
     print("\n**Where yarns slide** (slide_pull scene; μ first, then the other free parameters)\n")
-    head = "| fit | parameter | truth | start | fitted (error) | std. error | converged, iterations, sim., wall |"
+    head = "| fit | parameter | truth | start | fitted (error) | std. error | converged, iterations, sim., wall / CPU |"
     print(head)
     print("|" + "---|" * (head.count("|") - 1))
     for name, run in slides:
