@@ -1,13 +1,12 @@
 #include "calibration/fit.h"
 
 #include "calibration/optimum_statistics.h"
+#include "calibration/parallel_starts.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <exception>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -238,26 +237,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
   if (opt.loss != "none" && opt.loss != "huber" && opt.loss != "cauchy")
     throw std::invalid_argument("unknown loss '" + opt.loss + "', expected none, huber or cauchy");
   const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::thread::hardware_concurrency());
-  const int workers = std::min(num_starts, std::max(1, threads));
-  if (workers <= 1) {
-    for (int s = 0; s < num_starts; ++s) solve_start(s);
-  } else {
-    std::atomic<int> next{0};
-    std::vector<std::exception_ptr> errors(workers);
-    std::vector<std::thread> pool;
-    for (int w = 0; w < workers; ++w)
-      pool.emplace_back([&, w] {
-        try {
-          for (int s = next++; s < num_starts; s = next++) solve_start(s);
-        } catch (...) {
-          errors[w] = std::current_exception();
-          next = num_starts;
-        }
-      });
-    for (std::thread& t : pool) t.join();
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
-  }
+  run_starts(num_starts, threads, solve_start);
 
   Run best;
   double best_cost = std::numeric_limits<double>::infinity();

@@ -13,6 +13,7 @@
 #include <Eigen/Sparse>
 
 #include "calibration/optimum_statistics.h"
+#include "calibration/parallel_starts.h"
 #include "calibration/scene_parameters.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_model.h"
@@ -340,6 +341,14 @@ TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetF
   result.wall_s = std::chrono::duration<double>(Clock::now() - wall0).count();
   result.cpu_s = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
   return result;
+}
+
+std::vector<TrajectoryFitResult> fit_trajectories(const Scene& scene, const std::vector<TargetFrame>& target,
+                                                  const std::vector<TrajectoryFitOptions>& fits, int threads) {
+  std::vector<TrajectoryFitResult> results(fits.size());
+  run_starts(static_cast<int>(fits.size()), threads,
+             [&](int k) { results[k] = fit_trajectory(scene, target, fits[k]); });
+  return results;
 }
 
 }  // namespace wl

@@ -74,4 +74,11 @@ class TrajectoryFitError : public std::invalid_argument {  // bad input: exit 2
 TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetFrame>& target,
                                    const TrajectoryFitOptions& opt);
 
+// Independent fits (random starts), `threads` at a time, each with its own
+// models and integrators: result k is bitwise fit_trajectory(scene, target,
+// fits[k]) whatever the thread count. Their cpu_s is then the process's CPU
+// time while each ran (shared with the others running at the same time).
+std::vector<TrajectoryFitResult> fit_trajectories(const Scene& scene, const std::vector<TargetFrame>& target,
+                                                  const std::vector<TrajectoryFitOptions>& fits, int threads);
+
 }  // namespace wl

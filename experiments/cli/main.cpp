@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 
 #include "calibration/scene_parameters.h"
 #include "experiments/driver/calibrate.h"
@@ -272,7 +273,8 @@ int main(int argc, char** argv) {
                      "Print the variants the ladder would run, one per line, and exit (nothing is run or written)");
   wl::FitCommandConfig fitc;
   std::string fit_scene, fit_target, fit_free, fit_out;
-  std::vector<std::string> fit_starts;
+  std::vector<std::string> fit_starts, fit_start_sets;
+  int fit_jobs = 1;
   bool fit_quiet = false;
   auto* fit = app.add_subcommand(
       "fit",
@@ -284,6 +286,11 @@ int main(int argc, char** argv) {
                   "Comma-separated scene keys to fit, e.g. contact.shear_modulus_Pa,yarn_types.yarn1.density_kg_per_m")
       ->required();
   fit->add_option("--start", fit_starts, "Start value KEY=VALUE of a fitted key (repeatable; default the scene's)");
+  fit->add_option("--start-set", fit_start_sets,
+                  "One more fit from these starts, KEY=VALUE,KEY=VALUE over --start (repeatable; the fits are "
+                  "written to OUT/start_1, start_2, ...)");
+  fit->add_option("--jobs", fit_jobs, "Fits of --start-set run at once (each on its own models; same results)")
+      ->capture_default_str();
   fit->add_option("--frames", fitc.frames, "Fit the target's first N frames after t = 0 (default all)");
   fit->add_option("--model", fitc.fit.model, "Model that is fitted: yarn, fem")->capture_default_str();
   fit->add_option("--integrator", fitc.fit.integrator,
@@ -564,14 +571,16 @@ int main(int argc, char** argv) {
       fitc.target_dir = fit_target;
       fitc.fit.free = split_list(fit_free);
       if (fitc.fit.free.empty()) throw std::invalid_argument("--free: empty list");
-      for (const std::string& s : fit_starts) {
+      auto read_start = [](const std::string& s, std::map<std::string, double>& start) {
         const auto eq = s.find('=');
         const std::vector<double> v = eq == std::string::npos
                                           ? std::vector<double>{}
                                           : split_numbers(s.substr(eq + 1), "--start " + s.substr(0, eq));
         if (v.size() != 1) throw std::invalid_argument("--start: got '" + s + "', expected KEY=VALUE with VALUE > 0");
-        fitc.fit.start[s.substr(0, eq)] = v[0];
-      }
+        start[s.substr(0, eq)] = v[0];
+      };
+      for (const std::string& s : fit_starts) read_start(s, fitc.fit.start);
+      if (fit_jobs < 1) throw std::invalid_argument("--jobs: got " + std::to_string(fit_jobs) + ", expected >= 1");
       if (fit->count("--max-iterations") && fitc.fit.max_iterations < 1)
         throw std::invalid_argument("--max-iterations: got " + std::to_string(fitc.fit.max_iterations) +
                                     ", expected >= 1");
@@ -579,7 +588,25 @@ int main(int argc, char** argv) {
       fitc.resolution = wl::parse_resolution("--resolution", fit_resolution, fit_rtol);
       fitc.out_dir = wl::output_folder(fit->count("--out") ? std::optional(fit_out) : std::nullopt,
                                        std::filesystem::path("results/fit") / std::filesystem::path(fit_scene).stem());
-      const wl::FitCommandPlan plan = wl::plan_fit(fitc);  // every input checked; nothing written yet
+      std::vector<wl::FitCommandConfig> sets;
+      for (const std::string& list : fit_start_sets) {
+        wl::FitCommandConfig c = fitc;
+        for (const std::string& s : split_list(list)) read_start(s, c.fit.start);
+        c.out_dir = fitc.out_dir / ("start_" + std::to_string(sets.size() + 1));
+        sets.push_back(std::move(c));
+      }
+      for (const wl::FitCommandConfig& c : sets) wl::plan_fit(c);  // every input checked; nothing written yet
+      const wl::FitCommandPlan plan = wl::plan_fit(fitc);
+      if (!sets.empty()) {
+        bool all = true;
+        const std::vector<wl::TrajectoryFitResult> rs = wl::run_fits(sets, plan, fit_jobs);
+        for (size_t k = 0; k < rs.size(); ++k) {
+          std::cerr << "weavelab: fit: " << sets[k].out_dir.string() << ": " << rs[k].iterations << " iterations, "
+                    << rs[k].wall_s << " s wall, " << rs[k].cpu_s << " s CPU; " << rs[k].message << "\n";
+          all = all && rs[k].converged;
+        }
+        return all ? 0 : 1;
+      }
       const wl::TrajectoryFitResult r = wl::run_fit(fitc, plan);
       if (r.final_rms.empty()) {
         std::cerr << "weavelab: fit: " << r.message << "\n";

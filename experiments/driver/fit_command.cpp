@@ -100,6 +100,20 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
 
 TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) {
   const TrajectoryFitResult r = fit_trajectory(p.scene, p.target, c.fit);
+  write_fit(c, p, r);
+  return r;
+}
+
+std::vector<TrajectoryFitResult> run_fits(const std::vector<FitCommandConfig>& starts, const FitCommandPlan& p,
+                                          int jobs) {
+  std::vector<TrajectoryFitOptions> fits;
+  for (const FitCommandConfig& c : starts) fits.push_back(c.fit);
+  const std::vector<TrajectoryFitResult> r = fit_trajectories(p.scene, p.target, fits, jobs);
+  for (size_t k = 0; k < starts.size(); ++k) write_fit(starts[k], p, r[k]);
+  return r;
+}
+
+void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const TrajectoryFitResult& r) {
   std::filesystem::create_directories(c.out_dir);
 
   Json j = Json::object();
@@ -181,7 +195,6 @@ TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) 
     frames.row(row);
   }
   frames.commit();
-  return r;
 }
 
 }  // namespace wl

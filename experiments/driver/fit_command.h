@@ -39,5 +39,11 @@ struct FitCommandPlan {
 FitCommandPlan plan_fit(const FitCommandConfig& config);
 
 TrajectoryFitResult run_fit(const FitCommandConfig& config, const FitCommandPlan& plan);
+// Fits from several starts (configs that differ in fit.start and out_dir), `jobs`
+// at a time (calibration/trajectory_fit.h: each as run_fit would give it).
+std::vector<TrajectoryFitResult> run_fits(const std::vector<FitCommandConfig>& starts, const FitCommandPlan& plan,
+                                          int jobs);
+// Writes one fit's outputs into config.out_dir.
+void write_fit(const FitCommandConfig& config, const FitCommandPlan& plan, const TrajectoryFitResult& result);
 
 }  // namespace wl

@@ -84,6 +84,31 @@ TEST(TrajectoryFit, RecoversYarnParametersFromTheirOwnTrajectory) {
   }
 }
 
+// Independent starts fitted two at a time, each on its own models, end
+// bitwise where the same fits end one after the other.
+TEST(TrajectoryFit, ParallelStartsEqualSerialFitsBitwise) {
+  const Scene truth = small_scene();
+  const auto target = record<YarnModel>(truth, yarn_nodes, {0.01});
+  std::vector<TrajectoryFitOptions> fits(2);
+  const double starts[] = {1400.0, 700.0};
+  for (size_t k = 0; k < fits.size(); ++k) {
+    fits[k].free = {kShearModulusKey};
+    fits[k].start = {{kShearModulusKey, starts[k]}};
+    fits[k].max_iterations = 2;
+  }
+  const std::vector<TrajectoryFitResult> parallel = fit_trajectories(truth, target, fits, 2);
+  ASSERT_EQ(parallel.size(), fits.size());
+  for (size_t k = 0; k < fits.size(); ++k) {
+    const TrajectoryFitResult serial = fit_trajectory(truth, target, fits[k]);
+    EXPECT_NE(serial.parameters[0].value, starts[k]);  // the fit moved
+    EXPECT_EQ(parallel[k].parameters[0].value, serial.parameters[0].value) << "start " << k;
+    EXPECT_EQ(parallel[k].cost_history, serial.cost_history) << "start " << k;
+    ASSERT_EQ(parallel[k].final_positions.size(), serial.final_positions.size());
+    for (size_t f = 0; f < serial.final_positions.size(); ++f)
+      EXPECT_EQ(parallel[k].final_positions[f], serial.final_positions[f]) << "start " << k << ", frame " << f;
+  }
+}
+
 // Where yarns slide under load (experiments/scenes/slide_pull_7.toml: a handle
 // pulls one warp through a pinned cloth) μ sets how much of the pull the
 // crossings pass on to the cloth, so the frames tell it: the fit finds it from

@@ -88,6 +88,10 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
       {"--free contact.shear_modulus_Pa --model fem", "does not depend on it"},
       {"--free contact.shear_modulus_Pa --resolution controlled --integrator be-linear", "runs sdirk2"},
       {"--free contact.shear_modulus_Pa --resolution fine", "--resolution"},
+      {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=9e2,contact.friction_coefficient=0.3",
+       "not among the fitted keys"},
+      {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=x", "--start"},
+      {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=900 --jobs 0", "--jobs"},
   };
   for (const auto& c : cases) {
     const auto r = fit(c.args, out);
