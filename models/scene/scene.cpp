@@ -26,7 +26,7 @@
 //     density_kg_per_m, stretch_modulus_Pa, bending_modulus_Pa   all > 0
 //     "default" is YarnType{} of scene.h unless defined here.
 //   [knit]                   knit scenes only (docs/models.md §11)
-//     roll_stiffness_N, stitch_length_stiffness_N   ≥ 0
+//     roll_stiffness_N, stitch_length_stiffness_N, compression_stiffness_N_per_m   ≥ 0
 //   A knit scene takes no [[pins]], [[handles]], [wind], [fem] or [[obstacles]] (not supported yet).
 //   [contact]
 //     shear_model, friction_model      "gong" | "cirio"
@@ -418,6 +418,8 @@ void read_knit(TableReader& top, Scene& s) {
   if (k) {
     k->read_number("roll_stiffness_N", s.knit->roll_stiffness_N, "a number ≥ 0 (N)", non_negative);
     k->read_number("stitch_length_stiffness_N", s.knit->stitch_length_stiffness_N, "a number ≥ 0 (N)", non_negative);
+    k->read_number("compression_stiffness_N_per_m", s.knit->compression_stiffness_N_per_m, "a number ≥ 0 (N/m)",
+                   non_negative);
     k->finish();
   }
   if (!s.knit) return;

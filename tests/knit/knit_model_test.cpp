@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "models/knit/knit_rest_shape.h"
 #include "models/model_factory.h"
@@ -134,6 +135,46 @@ TEST(KnitModel, AssembledJacobianMatchesFiniteDifferences) {
     const auto r = test::check_jacobian_columns(
         force, q, [&](int j) { return Vec(K.col(j)); }, cols, opt);
     EXPECT_TRUE(r.ok) << model->describe().at("model") << ": " << r.detail;
+  }
+}
+
+// The deepest overlap (2R − d, 2R − σh) over the elements of the contact
+// compression term `name` of a model at state q, from each element's energy
+// ½ κ (2R − d)² (docs/models.md §11.6); −1 without such a term.
+double deepest_overlap(const KnitModel& m, const Vec& q, double kappa, const std::string& name) {
+  double deepest = -1.0;
+  const Vec v = Vec::Zero(m.num_dofs());
+  for (const auto& term : m.terms()) {
+    if (term->name() != name) continue;
+    std::vector<double> lq(term->stencil_size()), lv(term->stencil_size());
+    for (int e = 0; e < term->num_elements(); ++e) {
+      m.gather_local(*term, e, q, v, lq.data(), lv.data());
+      deepest = std::max(deepest, std::sqrt(2.0 * term->energy(e, lq.data()) / kappa));
+    }
+  }
+  return deepest;
+}
+
+// Without the compression the relaxed stitches collapse: the two yarns of a
+// stitch pass into each other and its front and back are lost. With it every
+// stitch keeps its two yarns 2R apart through the cloth to within a tenth,
+// and no two watched pieces of yarn overlap by more.
+TEST(KnitCompression, TheRelaxedStitchesKeepTheirYarnsApart) {
+  for (const std::string kind : {"stockinette", "garter"}) {
+    Scene s = knit_scene(kind, 4, 4);
+    const double D = 2.0 * s.radius_m, kappa = s.knit->compression_stiffness_N_per_m;
+    const KnitModel held(s);
+    const double stitch = deepest_overlap(held, held.initial_q(), kappa, "stitch_compression");
+    const double pieces = deepest_overlap(held, held.initial_q(), kappa, "yarn_compression");
+    s.knit->compression_stiffness_N_per_m = 1e-12;  // the terms watch, their force is negligible
+    const KnitModel free(s);
+    const double collapsed = deepest_overlap(free, free.initial_q(), 1e-12, "stitch_compression");
+    std::printf("%s: stitch overlap %g, pieces %g, without %g (D %g)\n", kind.c_str(), stitch, pieces, collapsed, D);
+    EXPECT_GE(stitch, 0.0) << kind << ": no stitch compression term";
+    EXPECT_GE(pieces, 0.0) << kind << ": no yarn compression term";
+    EXPECT_LE(stitch, 0.1 * D) << kind;
+    EXPECT_LE(pieces, 0.1 * D) << kind;
+    EXPECT_GT(collapsed, 0.5 * D) << kind << ": without compression the stitches should collapse";
   }
 }
 
