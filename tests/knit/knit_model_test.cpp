@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 
 #include "models/knit/knit_rest_shape.h"
 #include "models/model_factory.h"
@@ -169,12 +168,31 @@ TEST(KnitCompression, TheRelaxedStitchesKeepTheirYarnsApart) {
     s.knit->compression_stiffness_N_per_m = 1e-12;  // the terms watch, their force is negligible
     const KnitModel free(s);
     const double collapsed = deepest_overlap(free, free.initial_q(), 1e-12, "stitch_compression");
-    std::printf("%s: stitch overlap %g, pieces %g, without %g (D %g)\n", kind.c_str(), stitch, pieces, collapsed, D);
     EXPECT_GE(stitch, 0.0) << kind << ": no stitch compression term";
     EXPECT_GE(pieces, 0.0) << kind << ": no yarn compression term";
     EXPECT_LE(stitch, 0.1 * D) << kind;
     EXPECT_LE(pieces, 0.1 * D) << kind;
     EXPECT_GT(collapsed, 0.5 * D) << kind << ": without compression the stitches should collapse";
+  }
+}
+
+// The stiffness κ is read from [knit] (default 100 N/m), 0 builds neither
+// compression term, and a negative value is a located error.
+TEST(KnitCompression, StiffnessKey) {
+  const std::string head = "[cloth.pattern]\nkind = \"stockinette\"\ncourses = 4\nwales = 4\n[knit]\n";
+  EXPECT_DOUBLE_EQ(parse_scene(head, "ok.toml").knit->compression_stiffness_N_per_m, 100.0);
+  EXPECT_DOUBLE_EQ(
+      parse_scene(head + "compression_stiffness_N_per_m = 0\n", "ok.toml").knit->compression_stiffness_N_per_m, 0.0);
+  Scene off = knit_scene("stockinette", 4, 4);
+  off.knit->compression_stiffness_N_per_m = 0.0;
+  const KnitModel m(off);
+  for (const auto& t : m.terms()) EXPECT_EQ(t->name().find("compression"), std::string::npos) << t->name();
+  try {
+    parse_scene(head + "compression_stiffness_N_per_m = -1\n", "bad.toml");
+    ADD_FAILURE() << "a negative κ should be rejected";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line, 6);
+    EXPECT_EQ(e.key, "knit.compression_stiffness_N_per_m");
   }
 }
 
