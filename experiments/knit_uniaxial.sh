@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Knit against woven under the same uniaxial load per width (docs/models.md
-# §11.7): `weavelab pull` on an 8 × 8 stockinette patch of
+# §11.8): `weavelab pull` on an 8 × 8 stockinette patch of
 # experiments/scenes/knit_stockinette.toml's yarn (rest tile of §11.3),
 # pulled wale-wise (y) and course-wise (x), and on a flat plain weave of the
 # same yarn type and radius whose spacing gives it the knit's yarn length per

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Knit against woven under the same load per width (experiments/knit_uniaxial.sh,
-docs/models.md §11.7). Usage: plot_knit_uniaxial.py OUT
+docs/models.md §11.8). Usage: plot_knit_uniaxial.py OUT
 
 Reads OUT/{knit_y,knit_x,woven_y}/pull.{csv,json}; at loads F/W that every
 curve reached, the strain of each (linear interpolation between rungs) and the

@@ -1,5 +1,5 @@
 // `weavelab pull`: a quasi-static uniaxial strip test of a flat scene's cloth,
-// woven or knitted, at yarn level (docs/models.md §11.7). The first and last
+// woven or knitted, at yarn level (docs/models.md §11.8). The first and last
 // rows of nodes across the pull direction are clamped grips (positions and
 // sliding coordinates held); the far grip moves by λ·H along the pull, H the
 // grips' rest distance; everything else is free (the sides neck and curl).

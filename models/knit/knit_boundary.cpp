@@ -21,7 +21,7 @@ std::vector<int> knit_pinned_dofs(const KnitGraph& graph, const Scene& scene) {
   return held;
 }
 
-// V = ½ (k/2) ‖x − a(t)‖² on each node of the contact (docs/models.md §3.10, §11.6).
+// V = ½ (k/2) ‖x − a(t)‖² on each node of the contact (docs/models.md §3.10, §11.7).
 std::unique_ptr<Term> knit_handles(const KnitGraph& graph, const Scene& scene, const Vec& q0) {
   if (scene.handles.empty() || !scene.terms.handles) return nullptr;
   auto t = std::make_unique<HandleSpringTerm>();

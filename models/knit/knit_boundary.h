@@ -1,4 +1,4 @@
-// Pins and handles of a knit scene (docs/models.md §11.6). A scene's
+// Pins and handles of a knit scene (docs/models.md §11.7). A scene's
 // node = [i, j] names stitch contact j of contact row i: row i lies between
 // course i−1 and course i (row 0 below the first course, row `courses` above
 // the last), contact j is wale j/2, its left side when j is even. A pin holds

@@ -6,11 +6,14 @@
 #include <sstream>
 
 #include "models/common/yarn_damper.h"
+#include "models/knit/compression_pairs.h"
 #include "models/knit/image_term.h"
 #include "models/knit/knit_boundary.h"
 #include "models/knit/knit_rest_shape.h"
+#include "models/knit/terms/stitch_compression.h"
 #include "models/knit/terms/stitch_length.h"
 #include "models/knit/terms/stitch_roll.h"
+#include "models/knit/terms/yarn_compression.h"
 #include "models/scene/parameter_keys.h"
 #include "models/yarn/terms/bending.h"
 #include "models/yarn/terms/gravity.h"
@@ -114,6 +117,7 @@ KnitModel::KnitModel(const Scene& scene, bool tile, const std::array<double, 2>&
   add_segment_terms();
   if (scene.terms.bending) add_bending();
   add_stitch_terms();
+  add_compression();
   if (!tile_) {
     apply_pose();
     if (auto handles = knit_handles(graph_, scene_, q0_)) terms_.push_back(std::move(handles));
@@ -282,6 +286,79 @@ void KnitModel::add_stitch_terms() {
   }
   if (k.roll_stiffness_N > 0.0 && !tile_) roll.finish(terms_);
   if (k.stitch_length_stiffness_N > 0.0 && scene_.sliding) length.finish(terms_);
+}
+
+// Contact compression (docs/models.md §11.6), in the tile too, so that the rest
+// shape is an equilibrium with it: at every stitch contact, and between every
+// two yarn pieces that share no node and pass closer than the cutoff in the
+// generated geometry.
+void KnitModel::add_compression() {
+  const double kappa = scene_.knit->compression_stiffness_N_per_m;
+  if (!(kappa > 0.0)) return;
+  const KnitLayout& L = graph_.layout();
+  const double D = 2.0 * scene_.radius_m;
+  Building<StitchCompressionTerm> stitch;
+  for (const StitchContact& c : graph_.stitches()) {
+    // The contacts below and above in the same wale and side; in the tile
+    // across its course border as images one period down or up.
+    auto row = [&](int r, Vec3& shift) {
+      shift.setZero();
+      if (!tile_) return r;
+      const double period = L.courses * L.course_spacing;
+      if (r < 0) shift.y() = -period;
+      if (r >= L.courses) shift.y() = period;
+      return (r + L.courses) % L.courses;
+    };
+    Vec3 down, up;
+    const int rd = row(c.course - 1, down), ru = row(c.course + 1, up);
+    const int nodes[8] = {c.a,
+                          c.b,
+                          graph_.contact_node(c.course, c.wale, 1 - c.side, 0),
+                          graph_.contact_node(c.course, c.wale, 1 - c.side, 1),
+                          graph_.contact_node(rd, c.wale, c.side, 0),
+                          graph_.contact_node(rd, c.wale, c.side, 1),
+                          graph_.contact_node(ru, c.wale, c.side, 0),
+                          graph_.contact_node(ru, c.wale, c.side, 1)};
+    std::array<int, 24> st{};
+    for (int e = 0; e < 8; ++e) {
+      for (int d = 0; d < 3; ++d) st[3 * e + d] = graph_.node(nodes[e]).x_dof + d;
+      stitch.add_shift(e >= 6 ? up : e >= 4 ? down : Vec3::Zero());
+    }
+    stitch.term->add(st, kappa, D, c.side == 0 ? 1 : -1, c.purl ? -1 : 1);
+    stitch.term->tag_last(kCompressionStiffnessKey, kappa);
+  }
+  stitch.finish(terms_);
+
+  std::vector<YarnPiece> all;
+  for (const Segment& s : segments_) {
+    const auto& visits = graph_.yarns()[s.yarn].visits;
+    all.push_back({visits[s.k0].node, visits[s.k1].node, s.dx0, s.dx1});
+  }
+  const std::vector<YarnPiece> pieces = unique_pieces(all);
+  std::vector<Vec3> x;
+  for (const KnitNode& n : graph_.nodes()) x.push_back(n.x);
+  std::vector<Vec3> images{Vec3::Zero()};
+  if (tile_) {
+    images.clear();
+    for (int i = -1; i <= 1; ++i)
+      for (int j = -1; j <= 1; ++j)
+        images.push_back(Vec3(i * L.wales * L.wale_spacing, j * L.courses * L.course_spacing, 0.0));
+  }
+  Building<YarnCompressionTerm> pairs;
+  for (const PiecePair& p : compression_pairs(x, pieces, images, knit_compression_cutoff(L, scene_.radius_m))) {
+    const YarnPiece &a = pieces[p.a], &b = pieces[p.b];
+    std::array<int, 12> st{};
+    const int nodes[4] = {a.n0, a.n1, b.n0, b.n1};
+    for (int e = 0; e < 4; ++e)
+      for (int d = 0; d < 3; ++d) st[3 * e + d] = graph_.node(nodes[e]).x_dof + d;
+    pairs.term->add(st, kappa, D);
+    pairs.term->tag_last(kCompressionStiffnessKey, kappa);
+    pairs.add_shift(a.dx0);
+    pairs.add_shift(a.dx1);
+    pairs.add_shift(b.dx0 + p.shift);
+    pairs.add_shift(b.dx1 + p.shift);
+  }
+  pairs.finish(terms_);
 }
 
 std::vector<int> KnitModel::gauge_dofs() const {

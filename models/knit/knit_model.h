@@ -5,6 +5,7 @@
 // at every two-yarn stitch contact (stitch roll, stitch-length penalty).
 // The initial state is the relaxed tile of the pattern, tiled (knit_rest_shape.h).
 #pragma once
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -17,6 +18,15 @@ namespace wl {
 // The loops' layout of a knit scene: its courses × wales, or with `tile` the
 // pattern's smallest repeating tile, periodic.
 KnitLayout knit_layout(const Scene& scene, bool tile);
+
+// The parameter key of the contact compression's stiffness κ (docs/models.md §11.6).
+inline constexpr const char* kCompressionStiffnessKey = "knit.compression_stiffness_N_per_m";
+// Pieces of yarn closer than this in the generated geometry are kept apart by
+// the contact compression (docs/models.md §11.6): the contact distance 2R plus
+// half the smaller loop spacing.
+inline double knit_compression_cutoff(const KnitLayout& L, double radius) {
+  return 2.0 * radius + 0.5 * std::min(L.wale_spacing, L.course_spacing);
+}
 
 class KnitModel : public TermModel {
  public:
@@ -55,6 +65,7 @@ class KnitModel : public TermModel {
   void add_segment_terms();
   void add_bending();
   void add_stitch_terms();
+  void add_compression();
   struct Segment {
     int yarn, k0, k1;  // visits
     Vec3 dx0, dx1;     // image shifts of the two ends

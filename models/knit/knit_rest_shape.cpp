@@ -20,8 +20,8 @@ std::string cache_key(const Scene& s) {
   k.precision(17);
   const KnitPattern& p = *s.knit;
   k << static_cast<int>(p.kind) << ' ' << s.spacing_m << ' ' << p.course_spacing_m << ' ' << s.radius_m << ' '
-    << p.roll_stiffness_N << ' ' << p.stitch_length_stiffness_N << ' ' << s.sliding << ' ' << s.terms.stretch << ' '
-    << s.terms.bending;
+    << p.roll_stiffness_N << ' ' << p.stitch_length_stiffness_N << ' ' << p.compression_stiffness_N_per_m << ' '
+    << s.sliding << ' ' << s.terms.stretch << ' ' << s.terms.bending;
   for (const std::string& name : s.warp_yarn_types) {
     const YarnType& y = s.yarn_types.at(name);
     k << ' ' << y.stretch_modulus_Pa << ' ' << y.bending_modulus_Pa;

@@ -26,7 +26,7 @@
 //     density_kg_per_m, stretch_modulus_Pa, bending_modulus_Pa   all > 0
 //     "default" is YarnType{} of scene.h unless defined here.
 //   [knit]                   knit scenes only (docs/models.md §11)
-//     roll_stiffness_N, stitch_length_stiffness_N   ≥ 0
+//     roll_stiffness_N, stitch_length_stiffness_N, compression_stiffness_N_per_m   ≥ 0
 //   A knit scene takes no [wind], [fem] or [[obstacles]] (not supported yet); its [[pins]] and
 //   [[handles]] name stitch contacts: node = [i, j], 0 ≤ i ≤ courses (contact row), 0 ≤ j < 2·wales.
 //   [contact]
@@ -355,7 +355,7 @@ void read_fem(TableReader& top, Scene& s) {
 }
 
 // node = [i, j] inside the grid, not used twice, on the FEM lattice when stride > 1.
-// A knit scene's node = [i, j] names stitch contact j of contact row i (docs/models.md §11.6).
+// A knit scene's node = [i, j] names stitch contact j of contact row i (docs/models.md §11.7).
 NodeRef read_node(TableReader& t, const Scene& s, std::map<std::pair<int, int>, std::string>& taken) {
   const int rows = s.knit ? s.knit->courses + 1 : s.wefts, columns = s.knit ? 2 * s.knit->wales : s.warps;
   const std::string expected =
@@ -423,6 +423,8 @@ void read_knit(TableReader& top, Scene& s) {
   if (k) {
     k->read_number("roll_stiffness_N", s.knit->roll_stiffness_N, "a number ≥ 0 (N)", non_negative);
     k->read_number("stitch_length_stiffness_N", s.knit->stitch_length_stiffness_N, "a number ≥ 0 (N)", non_negative);
+    k->read_number("compression_stiffness_N_per_m", s.knit->compression_stiffness_N_per_m, "a number ≥ 0 (N/m)",
+                   non_negative);
     k->finish();
   }
   if (!s.knit) return;

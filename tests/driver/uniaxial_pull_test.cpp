@@ -1,4 +1,4 @@
-// `weavelab pull` (docs/models.md §11.7): the woven strip against its closed
+// `weavelab pull` (docs/models.md §11.8): the woven strip against its closed
 // form, the knit softer than the woven of the same yarn length per area, and
 // bad input refused before anything is written.
 #include "experiments/driver/uniaxial_pull.h"

@@ -1,4 +1,4 @@
-// Pins and handles on a knit (docs/models.md §11.6): the contact a scene's
+// Pins and handles on a knit (docs/models.md §11.7): the contact a scene's
 // node = [i, j] names, the DoFs a pin holds, the handle springs' pull and the
 // assembled Jacobian with them against finite differences.
 #include "models/knit/knit_boundary.h"

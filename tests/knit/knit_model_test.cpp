@@ -137,6 +137,65 @@ TEST(KnitModel, AssembledJacobianMatchesFiniteDifferences) {
   }
 }
 
+// The deepest overlap (2R − d, 2R − σh) over the elements of the contact
+// compression term `name` of a model at state q, from each element's energy
+// ½ κ (2R − d)² (docs/models.md §11.6); −1 without such a term.
+double deepest_overlap(const KnitModel& m, const Vec& q, double kappa, const std::string& name) {
+  double deepest = -1.0;
+  const Vec v = Vec::Zero(m.num_dofs());
+  for (const auto& term : m.terms()) {
+    if (term->name() != name) continue;
+    std::vector<double> lq(term->stencil_size()), lv(term->stencil_size());
+    for (int e = 0; e < term->num_elements(); ++e) {
+      m.gather_local(*term, e, q, v, lq.data(), lv.data());
+      deepest = std::max(deepest, std::sqrt(2.0 * term->energy(e, lq.data()) / kappa));
+    }
+  }
+  return deepest;
+}
+
+// Without the compression the relaxed stitches collapse: the two yarns of a
+// stitch pass into each other and its front and back are lost. With it every
+// stitch keeps its two yarns 2R apart through the cloth to within a tenth,
+// and no two watched pieces of yarn overlap by more.
+TEST(KnitCompression, TheRelaxedStitchesKeepTheirYarnsApart) {
+  for (const std::string kind : {"stockinette", "garter"}) {
+    Scene s = knit_scene(kind, 4, 4);
+    const double D = 2.0 * s.radius_m, kappa = s.knit->compression_stiffness_N_per_m;
+    const KnitModel held(s);
+    const double stitch = deepest_overlap(held, held.initial_q(), kappa, "stitch_compression");
+    const double pieces = deepest_overlap(held, held.initial_q(), kappa, "yarn_compression");
+    s.knit->compression_stiffness_N_per_m = 1e-12;  // the terms watch, their force is negligible
+    const KnitModel free(s);
+    const double collapsed = deepest_overlap(free, free.initial_q(), 1e-12, "stitch_compression");
+    EXPECT_GE(stitch, 0.0) << kind << ": no stitch compression term";
+    EXPECT_GE(pieces, 0.0) << kind << ": no yarn compression term";
+    EXPECT_LE(stitch, 0.1 * D) << kind;
+    EXPECT_LE(pieces, 0.1 * D) << kind;
+    EXPECT_GT(collapsed, 0.5 * D) << kind << ": without compression the stitches should collapse";
+  }
+}
+
+// The stiffness κ is read from [knit] (default 100 N/m), 0 builds neither
+// compression term, and a negative value is a located error.
+TEST(KnitCompression, StiffnessKey) {
+  const std::string head = "[cloth.pattern]\nkind = \"stockinette\"\ncourses = 4\nwales = 4\n[knit]\n";
+  EXPECT_DOUBLE_EQ(parse_scene(head, "ok.toml").knit->compression_stiffness_N_per_m, 100.0);
+  EXPECT_DOUBLE_EQ(
+      parse_scene(head + "compression_stiffness_N_per_m = 0\n", "ok.toml").knit->compression_stiffness_N_per_m, 0.0);
+  Scene off = knit_scene("stockinette", 4, 4);
+  off.knit->compression_stiffness_N_per_m = 0.0;
+  const KnitModel m(off);
+  for (const auto& t : m.terms()) EXPECT_EQ(t->name().find("compression"), std::string::npos) << t->name();
+  try {
+    parse_scene(head + "compression_stiffness_N_per_m = -1\n", "bad.toml");
+    ADD_FAILURE() << "a negative κ should be rejected";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.line, 6);
+    EXPECT_EQ(e.key, "knit.compression_stiffness_N_per_m");
+  }
+}
+
 TEST(KnitModel, TheFemModelRefusesKnits) {
   EXPECT_THROW(make_model(knit_scene("stockinette", 3, 3), "fem"), std::invalid_argument);
 }

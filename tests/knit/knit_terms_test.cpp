@@ -7,8 +7,10 @@
 #include <cmath>
 
 #include "models/knit/image_term.h"
+#include "models/knit/terms/stitch_compression.h"
 #include "models/knit/terms/stitch_length.h"
 #include "models/knit/terms/stitch_roll.h"
+#include "models/knit/terms/yarn_compression.h"
 #include "models/yarn/terms/stretch.h"
 #include "tests/support/fd_check.h"
 
@@ -89,6 +91,127 @@ TEST(StitchLengthTerm, ForcesAndJacobiansMatchFiniteDifferences) {
   // V = ½ k_l L (Δu/L − 1)²: Δu = 0.9 mm against L = 0.8 mm.
   const double q[2] = {2.0e-3, 2.9e-3};
   EXPECT_NEAR(t.energy(0, q), 0.5 * 1.5 * 0.8e-3 * std::pow(0.9 / 0.8 - 1.0, 2), 1e-18);
+}
+
+// Two pieces of yarn crossing 0.3 mm apart (contact distance 0.4 mm): the
+// closest points inside both (s, t ∈ (0, 1)), at an end of one (t clamped) and
+// nearly parallel.
+std::vector<test::LocalState> compression_states() {
+  const std::vector<double> zero(12, 0.0);
+  return {{{0.0, 0.0, 0.0, 1e-3, 0.1e-3, 0.0, 0.3e-3, -0.5e-3, 0.3e-3, 0.5e-3, 0.6e-3, 0.25e-3}, zero},
+          {{0.0, 0.0, 0.0, 1e-3, 0.1e-3, 0.0, 0.3e-3, 0.2e-3, 0.3e-3, 0.5e-3, 1.2e-3, 0.25e-3}, zero},
+          {{0.0, 0.0, 0.0, 1e-3, 0.0, 0.0, 0.2e-3, 0.01e-3, 0.25e-3, 1.3e-3, 0.03e-3, 0.3e-3}, zero}};
+}
+
+TEST(YarnCompressionTerm, ForcesJacobiansAndParameterDerivativeMatchFiniteDifferences) {
+  const std::array<int, 12> s = identity12();
+  YarnCompressionTerm t;
+  t.add(s, 150.0, 0.4e-3);
+  test::FdOptions opt;
+  opt.rel_step = 1e-7;
+  opt.floor = 1e-14;
+  auto r = test::check_element(t, 0, compression_states(), opt);
+  EXPECT_TRUE(r.ok) << r.detail;
+  auto make = [&](double k) {
+    auto term = std::make_unique<YarnCompressionTerm>();
+    term->add(s, k, 0.4e-3);
+    term->tag_last("knit.compression_stiffness_N_per_m", k);
+    return std::unique_ptr<Term>(std::move(term));
+  };
+  r = test::check_parameter_derivative(make, 150.0, 0, 0, compression_states(), opt);
+  EXPECT_TRUE(r.ok) << r.detail;
+}
+
+TEST(YarnCompressionTerm, DistanceAndPenaltyOfCrossingPieces) {
+  // Perpendicular pieces crossing above each other at a gap of 0.3 mm, then
+  // moved apart beyond the contact distance 0.4 mm (no force), then one piece
+  // slid off the other's end (the distance to the end point).
+  std::vector<double> q{-1e-3, 0.0, 0.0, 1e-3, 0.0, 0.0, 0.0, -1e-3, 0.3e-3, 0.0, 1e-3, 0.3e-3};
+  EXPECT_NEAR(YarnCompressionTerm::distance(q.data()), 0.3e-3, 1e-15);
+  YarnCompressionTerm t;
+  t.add(identity12(), 200.0, 0.4e-3);
+  EXPECT_NEAR(t.energy(0, q.data()), 0.5 * 200.0 * 1e-4 * 1e-4, 1e-18);
+  std::vector<double> f(12, 0.0), v(12, 0.0);
+  t.evaluate(0, q.data(), v.data(), ElementOutput{f.data()});
+  // F = κ (D − d) = 0.02 N, half on each end, pushing the pieces apart along z.
+  EXPECT_NEAR(f[2], -0.01, 1e-12);
+  EXPECT_NEAR(f[8] + f[11], 0.02, 1e-12);
+  q[8] = q[11] = 0.5e-3;
+  std::fill(f.begin(), f.end(), 0.0);
+  t.evaluate(0, q.data(), v.data(), ElementOutput{f.data()});
+  EXPECT_EQ(t.energy(0, q.data()), 0.0);
+  for (double x : f) EXPECT_EQ(x, 0.0);
+  q[6] = q[9] = 1.3e-3;  // the second piece beside the first one's end (1 mm, 0, 0)
+  q[8] = q[11] = 0.4e-3;
+  EXPECT_NEAR(YarnCompressionTerm::distance(q.data()), 0.5e-3, 1e-15);
+}
+
+// A stitch contact (a, b) squeezed to a stack height below 2R = 0.4 mm, with
+// the contact on the other side of its loop and those below and above it, the
+// loop tilted out of the xy plane. `sign` mirrors it through the cloth (purl).
+std::vector<double> stitch_contact_state(double sign) {
+  std::vector<double> q{0.0,   0.0,  -0.12, 0.05, 0.55,  0.15, 1.0,  0.02, -0.25, 1.04, 0.5,  0.1,
+                        -0.03, -1.6, -0.2,  0.02, -1.05, 0.22, 0.01, 1.6,  -0.18, 0.06, 2.15, 0.21};
+  for (size_t k = 0; k < q.size(); ++k) q[k] *= 1e-3 * (k % 3 == 2 ? sign : 1.0);
+  return q;
+}
+
+std::array<int, 24> identity24() {
+  std::array<int, 24> s{};
+  for (int a = 0; a < 24; ++a) s[a] = a;
+  return s;
+}
+
+TEST(StitchCompressionTerm, ForcesJacobiansAndParameterDerivativeMatchFiniteDifferences) {
+  // Knit and purl, from the left and from the right contact of the loop.
+  for (const auto& [side, stitch] : {std::pair{1, 1}, std::pair{-1, -1}, std::pair{-1, 1}}) {
+    std::vector<double> q = stitch_contact_state(stitch);
+    if (side < 0)  // the other contact on the left: mirror in x
+      for (size_t k = 0; k < q.size(); k += 3) q[k] = -q[k];
+    const std::vector<test::LocalState> states{{q, std::vector<double>(24, 0.0)}};
+    StitchCompressionTerm t;
+    t.add(identity24(), 150.0, 0.4e-3, side, stitch);
+    EXPECT_GT(t.energy(0, q.data()), 0.0) << "the test state should be squeezed";
+    test::FdOptions opt;
+    opt.rel_step = 1e-7;
+    opt.floor = 1e-14;
+    auto r = test::check_element(t, 0, states, opt);
+    EXPECT_TRUE(r.ok) << r.detail;
+    auto make = [&](double k) {
+      auto term = std::make_unique<StitchCompressionTerm>();
+      term->add(identity24(), k, 0.4e-3, side, stitch);
+      term->tag_last("knit.compression_stiffness_N_per_m", k);
+      return std::unique_ptr<Term>(std::move(term));
+    };
+    r = test::check_parameter_derivative(make, 150.0, 0, 0, states, opt);
+    EXPECT_TRUE(r.ok) << r.detail;
+  }
+}
+
+TEST(StitchCompressionTerm, StackHeightIsTheStitchExtentThroughTheCloth) {
+  // A flat loop in the xy plane: h = z_b − z_a, the stitch slanting along the wale.
+  std::vector<double> q(24, 0.0);
+  const double nodes[8][3] = {{0, 0, -0.125}, {0, 0.5, 0.125}, {1, 0, 0},   {1, 0.5, 0},
+                              {0, -1.6, 0},   {0, -1.1, 0},    {0, 1.6, 0}, {0, 2.1, 0}};
+  for (int k = 0; k < 8; ++k)
+    for (int d = 0; d < 3; ++d) q[3 * k + d] = 1e-3 * nodes[k][d];
+  StitchCompressionTerm t;
+  t.add(identity24(), 200.0, 0.4e-3, 1, 1);
+  t.add(identity24(), 200.0, 0.4e-3, 1, -1);
+  EXPECT_NEAR(t.stack_height(0, q.data()), 0.25e-3, 1e-15);
+  EXPECT_NEAR(t.stack_height(1, q.data()), -0.25e-3, 1e-15);
+  // V = ½ κ (2R − h)² for the knit; the purl stitch, crossing the wrong way, is deeper in.
+  EXPECT_NEAR(t.energy(0, q.data()), 0.5 * 200.0 * 0.15e-3 * 0.15e-3, 1e-15);
+  EXPECT_NEAR(t.energy(1, q.data()), 0.5 * 200.0 * 0.65e-3 * 0.65e-3, 1e-15);
+  // The stack pushed open: F_b = κ (2R − h) n = 0.03 N along +z, F_a the opposite.
+  std::vector<double> f(24, 0.0), v(24, 0.0);
+  t.evaluate(0, q.data(), v.data(), ElementOutput{f.data()});
+  EXPECT_NEAR(f[5], 0.03, 1e-12);
+  EXPECT_NEAR(f[2], -0.03, 1e-12);
+  q[5] = 0.35e-3;  // h = 0.45 mm ≥ 2R: no force
+  std::fill(f.begin(), f.end(), 0.0);
+  t.evaluate(0, q.data(), v.data(), ElementOutput{f.data()});
+  for (double x : f) EXPECT_EQ(x, 0.0);
 }
 
 TEST(ImageTerm, ShiftsTheStateAndKeepsTheDerivatives) {

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
-#include <unsupported/Eigen/AutoDiff>
+
+#include "models/knit/terms/autodiff_jacobian.h"
 
 namespace wl {
 namespace {
@@ -58,17 +59,16 @@ void StitchRollTerm::evaluate(int e, const double* q, const double*, const Eleme
     f = -c * wrapped(psi, rest_angle_[e]) * g;  // F = −k_t L (ψ − ψ̄) ∇ψ
     return;
   }
-  using AD = Eigen::AutoDiffScalar<Eigen::Matrix<double, 12, 1>>;
-  Eigen::Matrix<AD, 12, 1> x, g;
-  for (int a = 0; a < 12; ++a) x[a] = AD(q[a], 12, a);
-  const AD psi = roll_angle_and_gradient<AD>(x, &g);
-  const AD d = psi - (psi.value() - wrapped(psi.value(), rest_angle_[e]));  // ψ − ψ̄ wrapped, ∂d/∂q = ∇ψ
-  Eigen::Map<Eigen::Matrix<double, 12, 12>> K(out.dfdq);
-  for (int a = 0; a < 12; ++a) {
-    const AD fa = -c * d * g[a];
-    f[a] = fa.value();
-    K.row(a) = fa.derivatives().transpose();  // ∂F_a/∂q
-  }
+  using AD = AutoDiff<12>;
+  force_and_jacobian_by_autodiff<12>(
+      q,
+      [&](const Eigen::Matrix<AD, 12, 1>& x) {
+        Eigen::Matrix<AD, 12, 1> g;
+        const AD psi = roll_angle_and_gradient<AD>(x, &g);
+        const AD d = psi - (psi.value() - wrapped(psi.value(), rest_angle_[e]));  // ψ − ψ̄ wrapped, ∂d/∂q = ∇ψ
+        return Eigen::Matrix<AD, 12, 1>(-c * d * g);
+      },
+      out.force, out.dfdq);
 }
 
 }  // namespace wl
