@@ -7,6 +7,7 @@ curve reached, the strain of each (linear interpolation between rungs) and the
 ratio knit / woven. Writes OUT/knit_uniaxial.png and prints the table."""
 import csv
 import json
+import math
 import os
 import sys
 
@@ -42,9 +43,9 @@ def main():
             del curves[k]
     if "woven_y" not in curves:
         sys.exit("plot_knit_uniaxial.py: no woven curve")
-    top = min(f.max() for _, f, _ in curves.values())
+    top = curves["woven_y"][1].max()  # a row per load the woven reaches; a knit that does not: —
     preload = max(f[0] for _, f, _ in curves.values())  # F/W at zero strain (the knit's rest self-stress)
-    loads = [x for x in (0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0) if 2.0 * preload < x <= top]
+    loads = [x for x in (0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0) if 2.0 * preload < x <= top]
     print(f"(loads above twice the largest F/W at zero strain, {preload:.3g} N/m: the knit's rest tile pulls on its grips)")
     print("\n| F/W [N/m] | " + " | ".join(f"strain, {names[k]}" for k in curves) + " | " +
           " | ".join(f"{names[k]} / woven" for k in curves if k != "woven_y") + " |")
@@ -52,8 +53,9 @@ def main():
     for load in loads:
         e = {k: strain_at(s, f, load) for k, (s, f, _) in curves.items()}
         ratios = [e[k] / e["woven_y"] for k in curves if k != "woven_y"]
-        print(f"| {load:g} | " + " | ".join(f"{e[k]:.4g}" for k in curves) + " | " +
-              " | ".join(f"{r:.3g}" for r in ratios) + " |")
+        cell = lambda x, fmt: "—" if math.isnan(x) else format(x, fmt)
+        print(f"| {load:g} | " + " | ".join(cell(e[k], ".4g") for k in curves) + " | " +
+              " | ".join(cell(r, ".3g") for r in ratios) + " |")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
