@@ -11,8 +11,14 @@
 # e.g. cusick_drape_33 (run until it settles: WL_DURATION=1 WL_FREE=0);
 # WL_OUTPUT_INTERVAL replaces the scene's frame interval (s); WL_FREE=0 skips
 # the runs without the pedestal (and cost.txt).
+# WL_SETTLE_DT (s) with WL_SETTLE_AFTER (s, default 0.2): from that time on, the
+# drape runs take backward Euler steps of WL_SETTLE_DT (time.settle_dt_s,
+# docs/models.md §3.11.6) so that it settles; summary.json's "settle" gives the
+# end state's largest force and kinetic energy.
+# WL_MODELS (default "yarn fem") chooses the models.
 # Results under results/cusick/ (results/<scene>/ for another scene): the runs,
-# drape_<model>.csv and cost.txt.
+# drape_<model>.csv (with kinetic energy, intersecting triangle pairs and the
+# closest node to the pedestal per frame) and cost.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 name=${WL_SCENE:-cusick_drape_65}
@@ -32,26 +38,39 @@ import re, sys
 text = open(sys.argv[1]).read()
 print(re.sub(r"\[\[obstacles\]\].*?(?=\n\[)", "", text, flags=re.S))
 PY
+# The drape scene as run, with the settling phase if WL_SETTLE_DT is set.
+"$python" - "$scene" "${WL_SETTLE_AFTER:-0.2}" "${WL_SETTLE_DT:-}" "$duration" <<'PY' >"$out/drape.toml"
+import re, sys
+text, after, dt, duration = open(sys.argv[1]).read(), sys.argv[2], sys.argv[3], sys.argv[4]
+if dt:  # the scene's own duration must reach past settle_after_s
+    text = re.sub(r"^duration_s = .*$", f"duration_s = {duration}", text, flags=re.M)
+    text = re.sub(r"^\[time\]\n", f"[time]\nsettle_after_s = {after}\nsettle_dt_s = {dt}\n", text, flags=re.M)
+print(text)
+PY
 runs=(drape free)
 if [ "$free" = 0 ]; then runs=(drape); fi
-for model in yarn fem; do
+for model in ${WL_MODELS:-yarn fem}; do
   for run in "${runs[@]}"; do
-    s=$scene
-    if [ "$run" = free ]; then s=$out/free.toml; fi
     echo "== $run, $model model, $duration s" >&2
-    build/weavelab run "$s" --model "$model" --duration "$duration" "${extra[@]}" --quiet --out "$out/${run}_$model"
+    build/weavelab run "$out/$run.toml" --model "$model" --duration "$duration" "${extra[@]}" --quiet \
+      --out "$out/${run}_$model"
   done
-  "$python" experiments/drape_measure.py "$out/drape_$model" "$scene" --out "$out/drape_$model.csv" | tail -1
+  "$python" experiments/drape_measure.py "$out/drape_$model" "$scene" --state --out "$out/drape_$model.csv" | tail -2
 done
 if [ "$free" = 0 ]; then exit 0; fi
-"$python" - "$out" <<'PY' | tee "$out/cost.txt"
+"$python" - "$out" ${WL_MODELS:-yarn fem} <<'PY' | tee "$out/cost.txt"
 import statistics, sys
 sys.path.insert(0, "experiments")
 import weavelab_io as io
 out = sys.argv[1]
-print("model  median step with pedestal [ms]  without [ms]  ratio  steps with/without")
-for model in ("yarn", "fem"):
-    w = {r: io.step_wall_times(io.read_metrics(f"{out}/{r}_{model}")) for r in ("drape", "free")}
-    a, b = statistics.median(w["drape"]), statistics.median(w["free"])
-    print(f"{model:5s}  {1e3 * a:.1f}  {1e3 * b:.1f}  {a / b:.2f}  {len(w['drape'])}/{len(w['free'])}")
+print("model  run    median step [ms]  ratio to free  steps  factorizations  GMRES iterations  solver")
+for model in sys.argv[2:]:
+    w = {r: io.step_wall_times(io.read_metrics(f"{out}/{r}_{model}"))
+         for r in ("free", "drape")}
+    free = statistics.median(w["free"])
+    for r, times in w.items():
+        st = io.read_summary(f"{out}/{r}_{model}")["statistics"]
+        a = statistics.median(times)
+        print(f"{model:5s}  {r:5s}  {1e3 * a:.1f}  {a / free:.2f}  {len(times)}  {st.get('factorizations')}"
+              f"  {st.get('krylov_iters')}  {st.get('linear_solver')}")
 PY

@@ -2,7 +2,7 @@
 """Drape coefficient and fold count of a cloth over a disk pedestal, per frame
 (docs/models.md §3.11; the scene experiments/scenes/cusick_drape_65.toml).
 
-    drape_measure.py RUN SCENE [--out CSV]
+    drape_measure.py RUN SCENE [--out CSV] [--state]
 
 The cloth's cells (yarn quads or FEM triangles) are projected onto the plane
 of the pedestal's top (xy) and rasterized at 0.1 mm (a pixel counts when its
@@ -11,7 +11,10 @@ centre lies in a projected cell); the drape coefficient is
 area, so a flat cloth gives 1 and one hanging straight down gives 0. Folds:
 the shadow's outer radius r(φ) about the pedestal's axis in 1° bins, smoothed
 over 5°, and its local maxima that stand 0.5 mm above both neighbouring
-minima (a flat square shows its 4 corners)."""
+minima (a flat square shows its 4 corners). --state adds, per frame, the
+kinetic energy (metrics.csv at the frame's time), the intersecting triangle
+pairs of the cloth (self_intersections.csv) and the closest signed distance of
+a node to the pedestal (negative: inside)."""
 import argparse, csv, math, sys, tomllib
 import numpy as np
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
@@ -59,11 +62,33 @@ def folds(mask, X, Y, centre):
     return count
 
 
+def pedestal_distance(points, disk):
+    """Signed distance of each point to an unrotated disk or cylinder (docs/models.md §3.11.1)."""
+    if any(disk.get("rotation_deg", [0, 0, 0])):
+        raise SystemExit("drape_measure.py: --state needs an unrotated pedestal")
+    c = np.array(disk["center_m"])
+    a = 0.5 * disk.get("thickness_m", disk.get("height_m", 0.0))
+    rho = np.linalg.norm(points[:, :2] - c[:2], axis=1)
+    w = np.stack([rho - disk["radius_m"], np.abs(points[:, 2] - c[2]) - a], axis=1)
+    return np.linalg.norm(np.maximum(w, 0.0), axis=1) + np.minimum(w.max(axis=1), 0.0)
+
+
+def frame_state(run, times):
+    """Kinetic energy and self-intersecting pairs at the frame times."""
+    m = io.read_metrics(run)
+    ke = [float(m["kinetic_J"][np.argmin(np.abs(m["time_s"] - t))]) for t in times]
+    with open(f"{io.run_dir(run)}/self_intersections.csv", newline="") as f:
+        rows = [[float(x) for x in r] for r in list(csv.reader(f))[1:]]
+    pairs = {round(r[0], 9): int(r[1]) for r in rows}
+    return ke, [pairs.get(round(t, 9), -1) for t in times]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("run")
     ap.add_argument("scene")
     ap.add_argument("--out")
+    ap.add_argument("--state", action="store_true", help="add kinetic energy, self-intersections, pedestal distance")
     a = ap.parse_args()
     with open(a.scene, "rb") as f:
         scene = tomllib.load(f)
@@ -72,8 +97,10 @@ def main():
     L = scene["cloth"]["spacing_m"]
     side_u, side_v = (scene["cloth"]["wefts"] - 1) * L, (scene["cloth"]["warps"] - 1) * L
     a_cloth, a_ped = side_u * side_v, math.pi * r * r
-    rows = []
+    rows, closest = [], []
     for t, mesh in io.read_frames(a.run):
+        if a.state:
+            closest.append(float(pedestal_distance(mesh.points, disk).min()))
         cells = [c for block in mesh.cells if block.type in ("triangle", "quad") for c in block.data]
         lo, hi = mesh.points[:, :2].min(axis=0), mesh.points[:, :2].max(axis=0)
         step = 1e-4
@@ -81,10 +108,17 @@ def main():
         area = mask.sum() * step * step
         rows.append((t, (area - a_ped) / (a_cloth - a_ped), folds(mask, X, Y, centre)))
         print(f"t = {t:.3f} s  drape coefficient {rows[-1][1]:.3f}  folds {rows[-1][2]}")
+    header = ["time_s", "drape_coefficient", "folds"]
+    if a.state:
+        ke, pairs = frame_state(a.run, [r[0] for r in rows])
+        rows = [r + (k, p, c) for r, k, p, c in zip(rows, ke, pairs, closest)]
+        header += ["kinetic_J", "intersecting_triangle_pairs", "closest_to_pedestal_m"]
+        r = rows[-1]
+        print(f"t = {r[0]:.3f} s  kinetic energy {r[3]:.3g} J  intersecting pairs {r[4]}  closest node {r[5]:.3g} m")
     if a.out:
         with open(a.out, "w", newline="") as f:
             w = csv.writer(f, lineterminator="\n")
-            w.writerow(["time_s", "drape_coefficient", "folds"])
+            w.writerow(header)
             w.writerows(rows)
 
 

@@ -118,6 +118,10 @@ class Integrator {
   virtual void initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) = 0;
   // Advances to exactly t_out (stepping or interpolating as the method does).
   virtual StepResult advance_to(double t_out) = 0;
+  // From now on, fixed steps of dt (a fixed-step run's settling phase,
+  // docs/models.md §3.11.6); the state, history and statistics carry on.
+  // Honoured by the methods that replay steps (IntegratorCapabilities::replays_steps).
+  void set_fixed_step(double dt) { opt_.dt = dt; }
   double t() const { return t_; }
   const Vec& q() const { return q_; }
   const Vec& v() const { return v_; }

@@ -68,6 +68,22 @@ StepResult interrupted_result() {
                                                                                    : "a signal")};
 }
 
+// The force at (q, 0): an equilibrium has none on a free DoF (the velocity
+// terms, friction's damping among them, are left out; its anchors are not).
+SettledBalance settled_balance(const Scene& scene, Model& model, double t, const Vec& q, const Vec& v) {
+  Evaluation ev;
+  allocate_evaluation(model, ev);
+  model.evaluate(t, q, Vec::Zero(v.size()), kForce | kMass, ev);
+  Vec free_force = ev.force;
+  for (int i : model.fixed_dofs()) free_force[i] = 0.0;
+  const auto& g = scene.gravity_m_per_s2;
+  SettledBalance b;
+  b.max_force_N = free_force.lpNorm<Eigen::Infinity>();
+  b.heaviest_weight_N = Vec(ev.mass.diagonal()).maxCoeff() * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  b.kinetic_J = 0.5 * v.dot(ev.mass * v);
+  return b;
+}
+
 }  // namespace
 
 RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
@@ -159,9 +175,19 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   add_frame(model->frame(0.0, integrator->q(), integrator->v()));
   rep.frames = 1;
   const int outputs = static_cast<int>(std::llround(scene.duration_s / scene.output_interval_s));
+  // The settling phase: steps of settle_dt_s from settle_after_s on.
+  bool settling = false;
   auto advance = [&](double t_out) {
     if (interrupt_signal()) return interrupted_result();
     try {
+      if (scene.settle_dt_s > 0.0 && !settling && t_out > scene.settle_after_s) {
+        if (integrator->t() < scene.settle_after_s) {
+          const StepResult r = integrator->advance_to(scene.settle_after_s);
+          if (r.outcome != Outcome::ok) return r;
+        }
+        integrator->set_fixed_step(scene.settle_dt_s);
+        settling = true;
+      }
       return integrator->advance_to(t_out);
     } catch (const Interrupted&) {
       return interrupted_result();
@@ -186,6 +212,8 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   if (intersections) intersections->commit();
   rep.stats = integrator->stats();
   rep.end_time = integrator->t();
+  if (scene.settle_dt_s > 0.0 && rep.result.outcome == Outcome::ok)
+    rep.settled = settled_balance(scene, *model, integrator->t(), integrator->q(), integrator->v());
   rep.accuracy = std::move(accuracy);
   if (rep.accuracy) rep.time_error = rep.accuracy->estimate;
   if (scene.error_estimate && rep.result.outcome == Outcome::ok) {

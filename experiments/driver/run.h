@@ -25,6 +25,14 @@ struct RunOptions {
   std::function<void(const Frame&)> on_frame;
 };
 
+// The end state of a run with a settling phase (time.settle_dt_s): how far it
+// is from an equilibrium: the largest generalized force on a free DoF at the
+// final (t, q) at rest (v = 0), against the largest diagonal entry of M(q)
+// times ‖g‖ (a node's weight), and the kinetic energy at the final v.
+struct SettledBalance {
+  double max_force_N = 0.0, heaviest_weight_N = 0.0, kinetic_J = 0.0;
+};
+
 struct RunReport {
   StepResult result;
   IntegratorStats stats;
@@ -34,7 +42,8 @@ struct RunReport {
   std::optional<TimeErrorEstimate> time_error;
   // Scene key time.accuracy_m (--accuracy): the choice made before the run.
   std::optional<AccuracyChoice> accuracy;
-  std::string summary_json;  // the text of summary.json
+  std::optional<SettledBalance> settled;  // time.settle_dt_s set and the run ended ok
+  std::string summary_json;               // the text of summary.json
 };
 
 // The frames, metrics.csv and summary.json go to options.out_dir (README,

@@ -72,6 +72,12 @@ void check_run_settings(const Scene& scene, const std::map<std::string, std::str
     for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
     fail(scene, record, "time.integrator", "\"" + scene.integrator + "\"", "one of " + known);
   }
+  // The settling phase changes the step of a run under way (docs/models.md §3.11.6).
+  if (scene.settle_dt_s > 0.0 && !make_integrator(scene.integrator)->capabilities().replays_steps)
+    fail(scene, record, "time.settle_dt_s", shortest(scene.settle_dt_s),
+         "no settling phase under " + scene.integrator +
+             ": it needs an integrator of our own fixed steps "
+             "(be-linear, be-newton, sdirk2, symplectic)");
   const auto solvers = linear_solver_names();
   if (std::find(solvers.begin(), solvers.end(), scene.linear_solver) == solvers.end()) {
     std::string known;

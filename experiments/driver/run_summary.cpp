@@ -38,6 +38,15 @@ std::string run_summary_json(const Scene& scene, const RunOptions& options, cons
   j.set("result", out);
   if (report.time_error) j.set("time_error", report.time_error->to_json());
   if (report.accuracy) j.set("accuracy", report.accuracy->to_json());
+  if (report.settled) {
+    Json b = Json::object();
+    b.set("after_s", scene.settle_after_s);
+    b.set("dt_s", scene.settle_dt_s);
+    b.set("max_free_dof_force_N", report.settled->max_force_N);
+    b.set("max_mass_diagonal_times_g_N", report.settled->heaviest_weight_N);
+    b.set("kinetic_J", report.settled->kinetic_J);
+    j.set("settle", b);
+  }
   add_provenance(j);
   j.set("finished_utc", utc_now());
   return j.dump();

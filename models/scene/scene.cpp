@@ -49,6 +49,8 @@
 //     integrator (non-empty string; the run checks the name), adaptive (bool)
 //     linear_solver (non-empty string; the run checks the name)
 //     rtol in (0, 1), atol > 0
+//     settle_after_s ≥ 0 (< duration_s), settle_dt_s > 0 (≤ output_interval_s): fixed
+//       steps only, no error_estimate or accuracy_m
 //   [terms]       stretch, bending, shear, parallel_contact, friction, gravity, wind,
 //                 handles, inertia (bools)
 //   [fem]
@@ -466,6 +468,9 @@ void read_time(TableReader& top, Scene& s) {
     t->read_number("rtol", s.rtol, "a number > 0 and < 1", [](double x) { return x > 0.0 && x < 1.0; });
     t->read_number("atol", s.atol, "a number > 0", positive);
     t->read_bool("error_estimate", s.error_estimate);
+    t->read_number("settle_after_s", s.settle_after_s, "a finite number ≥ 0 (s)",
+                   [](double x) { return std::isfinite(x) && x >= 0.0; });
+    t->read_number("settle_dt_s", s.settle_dt_s, "a number > 0 (s)", positive);
     t->read_bool("exact_contact_jacobian", s.exact_contact_jacobian);
     t->read_number("accuracy_m", s.accuracy_m, "a finite number > 0 (m)",
                    [](double x) { return std::isfinite(x) && x > 0.0; });

@@ -183,6 +183,9 @@ struct Scene {
   std::string linear_solver = "auto";  // step matrix solver (integrators/sparse_solver.h); the run checks the name
   bool adaptive = false;
   double rtol = 1e-6, atol = 1e-9;
+  // From settle_after_s on, fixed steps of settle_dt_s (0: none): a drape that
+  // has fallen settles under backward Euler's numerical damping (docs/models.md §3.11.6).
+  double settle_after_s = 0.0, settle_dt_s = 0.0;
   // Estimate the run's global time error (experiments/driver/time_error.h).
   bool error_estimate = false;
   // Target of the run's time error, mean over frames of the RMS over nodes [m];

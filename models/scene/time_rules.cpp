@@ -51,6 +51,18 @@ std::optional<SettingViolation> time_settings_violation(const Scene& s,
                    T, s.duration_s,
                    "a duration ≤ " + format_number(kMaxFrames) + " × " + O + eq(kMaxFrames * s.output_interval_s) +
                        " (at most " + format_number(kMaxFrames) + " frames)");
+  if (s.settle_dt_s != 0.0) {  // the settling phase (docs/models.md §3.11.6)
+    const std::string SD = "time.settle_dt_s", SA = "time.settle_after_s";
+    if (s.adaptive || s.error_estimate || s.accuracy_m > 0.0)
+      return violation(SD, s.settle_dt_s,
+                       "no settling phase with adaptive steps, error_estimate or accuracy_m (fixed steps only)");
+    if (s.settle_dt_s > s.output_interval_s)
+      return between(SD, s.settle_dt_s, "a number ≤ " + O + eq(s.output_interval_s), O, s.output_interval_s,
+                     "a number ≥ " + SD + eq(s.settle_dt_s));
+    if (s.settle_after_s >= s.duration_s)
+      return between(SA, s.settle_after_s, "a number < " + T + eq(s.duration_s), T, s.duration_s,
+                     "a number > " + SA + eq(s.settle_after_s));
+  }
   return std::nullopt;
 }
 

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "tests/output/output_test_util.h"
 #include "tests/support/test_scenes.h"
 
 namespace {
@@ -225,6 +227,27 @@ TEST_F(Cli, SlidingCoordinatesThatCrossEndInOutcomeInvalidState) {
   EXPECT_TRUE(fs::exists(out / "metrics.csv"));
 }
 
+// The settling phase (docs/models.md §3.11.6): steps of 1 ms to 0.02 s, then of
+// 5 ms, and the end state's balance in summary.json.
+TEST_F(Cli, ASettlingPhaseTakesItsStepsAndReportsTheBalance) {
+  const fs::path scene = dir_ / "settle.toml", out = dir_ / "out";
+  std::ofstream(scene) << "[cloth]\nwarps = 5\nwefts = 5\n[time]\nduration_s = 0.05\ndt_s = 0.001\n"
+                          "output_interval_s = 0.01\nsettle_after_s = 0.02\nsettle_dt_s = 0.005\n";
+  const Result r = run_cli("run '" + scene.string() + "' --quiet --out '" + out.string() + "'", dir_);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream metrics(out / "metrics.csv");
+  std::string line;
+  std::getline(metrics, line);
+  std::vector<double> t;
+  while (std::getline(metrics, line)) t.push_back(std::stod(line));
+  ASSERT_EQ(t.size(), 1u + 20u + 6u);
+  EXPECT_NEAR(t[20], 0.02, 1e-12);
+  for (size_t k = 1; k < t.size(); ++k) EXPECT_NEAR(t[k] - t[k - 1], k <= 20 ? 0.001 : 0.005, 1e-12) << k;
+  const std::string summary = file_text(out / "summary.json");
+  for (const char* key : {"\"settle\"", "\"max_free_dof_force_N\"", "\"kinetic_J\""})
+    EXPECT_NE(summary.find(key), std::string::npos) << key << "\n" << summary;
+}
+
 const std::string kMeshObstacle = "[[obstacles]]\nshape = \"mesh\"\ncenter_m = [0, 0, -1]\n";
 
 // A mesh obstacle is written into the obstacles series with the cloth: the
@@ -239,6 +262,31 @@ TEST_F(Cli, AMeshObstacleIsWrittenWithTheCloth) {
   EXPECT_TRUE(fs::exists(out / "obstacles.pvd"));
   const std::string vtu = file_text(out / "frames" / "obstacles_00000.vtu");
   EXPECT_NE(vtu.find("NumberOfPoints=\"642\" NumberOfCells=\"1280\""), std::string::npos) << vtu.substr(0, 600);
+  // meshio reads the file, and its triangles are the OBJ's faces, scaled by 4 mm
+  // and moved to the scene's centre (the obstacle does not move).
+  ASSERT_TRUE(wl::test::python_with("numpy, meshio"));
+  const std::string script = R"(
+import sys, numpy as np, meshio
+m = meshio.read(sys.argv[1])
+tri = np.vstack([c.data for c in m.cells if c.type == "triangle"])
+v, f = [], []
+for line in open(sys.argv[2]):
+    w = line.split()
+    if w and w[0] == "v": v.append([float(x) for x in w[1:4]])
+    if w and w[0] == "f": f.append([int(x.split("/")[0]) - 1 for x in w[1:4]])
+v = np.array(v) * 0.004 + np.array([0.008, 0.008, -0.004])
+near = [int(np.argmin(np.linalg.norm(v - p, axis=1))) for p in m.points]
+gap = max(np.linalg.norm(v[near] - m.points, axis=1))
+got = {frozenset(near[i] for i in t) for t in tri}
+want = {frozenset(t) for t in f}
+print(len(tri), len(f), gap, got == want)
+sys.exit(0 if len(tri) == len(f) and gap < 1e-12 and got == want else 1)
+)";
+  const wl::test::CommandResult py = wl::test::run_python_script(
+      dir_, script,
+      wl::test::shell_quote((out / "frames" / "obstacles_00000.vtu").string()) + " " +
+          wl::test::shell_quote(std::string(WEAVELAB_SOURCE_DIR) + "/experiments/scenes/meshes/icosphere.obj"));
+  EXPECT_EQ(py.exit_code, 0) << py.output;
 }
 
 // Bad inputs of every kind: each is exit 2 with a located message (the scene,
@@ -293,6 +341,8 @@ TEST_F(Cli, EveryBadInputIsALocatedExit2) {
       {"--model cloth", "", "", "", "cloth"},
       {"--dt abc", "", "", "", "--dt"},
       {"", "[time]\nintegrator = \"foo\"\n", "", "", "bad.toml:2"},
+      {"--integrator arkode-dirk", "[time]\nduration_s = 0.02\nsettle_after_s = 0.01\nsettle_dt_s = 0.005\n", "", "",
+       "bad.toml:4"},  // the library's steps are not ours to change
       {"", "[time]\ndt_s = 0.5\n", "", "", "bad.toml:2"},
       {"", "[time]\nduration_s = 0.001\n", "", "", "bad.toml:2"},
       {"", "[time]\ndt_s = 1e-10\n", "", "", "bad.toml:2"},

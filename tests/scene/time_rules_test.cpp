@@ -112,5 +112,28 @@ TEST(TimeRules, LockExponentMustBePositive) {
   }
 }
 
+// The settling phase (docs/models.md §3.11.6): fixed steps only, a step within
+// the frame interval, starting before the end.
+TEST(TimeRules, SettlingPhaseNeedsFixedStepsWithinTheRun) {
+  Scene s;
+  s.settle_after_s = 0.2;
+  s.settle_dt_s = s.output_interval_s;
+  EXPECT_FALSE(time_settings_violation(s, none));
+  for (auto flag : {&Scene::adaptive, &Scene::error_estimate}) {
+    Scene a = s;
+    a.*flag = true;
+    EXPECT_EQ(violated_key(a), "time.settle_dt_s");
+  }
+  Scene a = s;
+  a.accuracy_m = 1e-4;
+  EXPECT_EQ(violated_key(a), "time.settle_dt_s");
+  a = s;
+  a.settle_dt_s = 2 * s.output_interval_s;
+  EXPECT_EQ(violated_key(a), "time.settle_dt_s");
+  a = s;
+  a.settle_after_s = s.duration_s;
+  EXPECT_EQ(violated_key(a), "time.settle_after_s");
+}
+
 }  // namespace
 }  // namespace wl
