@@ -13,7 +13,10 @@ EquilibriumSolver::EquilibriumSolver(Model& model, std::vector<int> prescribed) 
   held_.erase(std::unique(held_.begin(), held_.end()), held_.end());
   is_held_.assign(model.num_dofs(), 0);
   for (int d : held_) is_held_[d] = 1;
-  solver_ = std::make_unique<SparseSolver>(model.pattern(), held_);
+  // The method by what the model declares of ∂f/∂q (auto: CHOLMOD's LLᵀ of −K when it is
+  // symmetric, with the LU where −K is not positive definite; docs/design.md §6.3).
+  solver_ = std::make_unique<SparseSolver>(
+      model.pattern(), held_, SparseSolverOptions{LinearSolverMethod::automatic, model.asymmetric_terms()});
   allocate_evaluation(model, eval_);
   zero_v_ = Vec::Zero(model.num_dofs());
 }

@@ -217,9 +217,12 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
     so.max_num_iterations = opt.max_iterations;
-    so.function_tolerance = 1e-16;
+    // Stop when an iteration lowers the cost by less than 1e-10 of itself or moves θ by
+    // less than 1e-10 (docs/calibration.md §4): below that the curves' equilibrium
+    // tolerance (1e-10) is all an evaluation resolves, and further steps are rejected.
+    so.function_tolerance = 1e-10;
     so.gradient_tolerance = 1e-16;
-    so.parameter_tolerance = 1e-14;
+    so.parameter_tolerance = 1e-10;
     so.num_threads = 1;  // Ceres' threads would sum the curves' costs in a varying order
     so.logging_type = ceres::SILENT;
     Progress progress(s + 1);

@@ -1,7 +1,10 @@
 #include "calibration/virtual_tests.h"
 
+#include "calibration/parallel_starts.h"
+
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -364,6 +367,19 @@ ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const
   return run_material_test(
       model, [&](int i, int j) { return g.dofs(g.node(i, j)).x; }, test, test_scene.warps, test_scene.spacing_m, {},
       options);
+}
+
+std::vector<ResponseCurve> run_yarn_tests(const Scene& test_scene, const std::vector<TestSpec>& tests, int threads,
+                                          const std::function<void(int, const ResponseCurve&)>& done) {
+  std::vector<ResponseCurve> curves(tests.size());
+  std::mutex report;
+  run_starts(static_cast<int>(tests.size()), threads, [&](int k) {
+    curves[k] = run_yarn_test(test_scene, tests[k]);
+    if (!done) return;
+    std::lock_guard<std::mutex> lock(report);
+    done(k, curves[k]);
+  });
+  return curves;
 }
 
 ResponseCurve run_fem_test(const Scene& test_scene, const FemMaterial& material, const TestSpec& test,

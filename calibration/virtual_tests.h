@@ -130,6 +130,11 @@ ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const std::
 
 // The same for the yarn and continuum models of a material test scene.
 ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const EquilibriumOptions& options = {});
+// The yarn level's curves of several tests, `threads` at a time (≤ 1: in order).
+// Each test runs on its own model, so the curves are bitwise those of one test
+// after another; `done(k, curve)` is called as test k ends, one call at a time.
+std::vector<ResponseCurve> run_yarn_tests(const Scene& test_scene, const std::vector<TestSpec>& tests, int threads,
+                                          const std::function<void(int, const ResponseCurve&)>& done = {});
 struct FemMaterial;
 ResponseCurve run_fem_test(const Scene& test_scene, const FemMaterial& material, const TestSpec& test,
                            const std::vector<std::string>& parameter_keys = {}, const EquilibriumOptions& options = {});

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "calibration/fem_test_patch.h"
 #include "experiments/driver/experiment_meta.h"
@@ -199,12 +200,18 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
 
   // 1. Yarn level.
   auto t0 = Clock::now();
+  // The tests run at once, one per hardware thread as the fit's starts; the curves do not depend on it.
+  const int threads = c.fit.threads > 0 ? c.fit.threads : static_cast<int>(std::thread::hardware_concurrency());
+  const std::vector<ResponseCurve> yarn_curves =
+      run_yarn_tests(p.test_scene, p.tests, threads, [&](int k, const ResponseCurve& r) {
+        if (c.progress)
+          std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(p.tests[k]).c_str(), r.points.size(),
+                       p.tests[k].ladder.size(), r.complete ? "" : ", stopped:", r.message.c_str());
+      });
   std::vector<FitCurve> curves;
-  for (const TestSpec& t : p.tests) {
-    const ResponseCurve r = run_yarn_test(p.test_scene, t);
-    if (c.progress)
-      std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(t).c_str(), r.points.size(), t.ladder.size(),
-                   r.complete ? "" : ", stopped:", r.message.c_str());
+  for (size_t k = 0; k < p.tests.size(); ++k) {
+    const TestSpec& t = p.tests[k];
+    const ResponseCurve& r = yarn_curves[k];
     if (r.points.size() < 2) throw std::runtime_error("yarn-level test did not converge: " + r.message);
     FitCurve fc{{t.kind, {}, t.rotated}, {}};
     for (const ResponsePoint& pt : r.points) {

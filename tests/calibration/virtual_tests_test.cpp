@@ -2,8 +2,10 @@
 // function-theorem sensitivities of the continuum against central differences.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "calibration/fit.h"
 #include "calibration/virtual_tests.h"
@@ -123,6 +125,28 @@ TEST(VirtualTests, PatchSmallerThanThePatternIsRejected) {
   s.pattern.kind = Pattern::Kind::satin;  // 5-harness: needs 5 + 4
   EXPECT_THROW(material_test_scene(s, 8), std::invalid_argument);
   EXPECT_NO_THROW(material_test_scene(s, 9));
+}
+
+TEST(VirtualTests, YarnTestsRunAtOnceGiveTheCurvesOfOneAfterAnother) {
+  // Three tests of a sliding patch on two threads: each curve bitwise that of run_yarn_test alone.
+  const Scene patch = material_test_scene(hanging_wind(), 7);
+  const std::vector<TestSpec> tests{
+      {TestKind::uniaxial_warp, {0.005, 0.01}}, {TestKind::shear, {0.05, 0.1}}, {TestKind::bending_weft, {2.0, 4.0}}};
+  std::vector<int> reported;
+  const std::vector<ResponseCurve> at_once =
+      run_yarn_tests(patch, tests, 2, [&](int k, const ResponseCurve&) { reported.push_back(k); });
+  ASSERT_EQ(at_once.size(), tests.size());
+  std::sort(reported.begin(), reported.end());
+  EXPECT_EQ(reported, (std::vector<int>{0, 1, 2}));
+  for (size_t k = 0; k < tests.size(); ++k) {
+    const ResponseCurve alone = run_yarn_test(patch, tests[k]);
+    ASSERT_TRUE(alone.complete) << alone.message;
+    ASSERT_EQ(at_once[k].points.size(), alone.points.size());
+    for (size_t i = 0; i < alone.points.size(); ++i) {
+      EXPECT_NE(alone.points[i].response, 0.0);
+      EXPECT_EQ(at_once[k].points[i].response, alone.points[i].response) << test_name(tests[k]) << " rung " << i;
+    }
+  }
 }
 
 }  // namespace
