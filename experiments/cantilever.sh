@@ -26,12 +26,14 @@ case ${WL_FEM_LAW:-hinges} in
     scene=$out/scene.toml ;;
   *) echo "cantilever.sh: WL_FEM_LAW: got '$WL_FEM_LAW', expected hinges or grid_lines" >&2; exit 2 ;;
 esac
+source experiments/jobs.sh  # both models at once (WL_JOBS=1: one after the other)
 for model in yarn fem; do
   echo "== $model model" >&2
   extra=()
   if [ "$model" = fem ]; then extra=("${params[@]}"); fi
-  build/weavelab run "$scene" --model "$model" "${extra[@]}" --quiet --out "$out/$model"
+  job build/weavelab run "$scene" --model "$model" "${extra[@]}" --quiet --out "$out/$model"
 done
+wait_jobs
 build/weavelab info "$scene" --model fem "${params[@]}" >"$out/fem_info.txt"
 "$python" - "$scene" "$out" <<'PY' | tee "$out/bending_length.txt"
 import math, re, sys, tomllib

@@ -11,7 +11,7 @@
 #   error_budget.png/.svg      estimated against true error, and true error against CPU time
 # WL_SCENE (default the frozen-sliding scene) and WL_OUT change the scene and folder;
 # WL_RUNS="label:options;..." replaces the ladder. The reference takes about 13 min on
-# the 2-core machine, the ladder about 15 min.
+# the 2-core machine, the ladder about 15 min (its runs on every core: WL_JOBS, experiments/jobs.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh
@@ -24,15 +24,22 @@ if [ ! -f "$out/reference/summary.json" ]; then
   echo "error_budget: reference (ida, rtol 1e-8)" >&2
   build/weavelab run "$scene" --integrator ida --rtol 1e-8 --dt 1e-6 --quiet --out "$out/reference"
 fi
+# The ladder's runs on every core (experiments/jobs.sh; WL_JOBS=1: one at a time).
+source experiments/jobs.sh
+ladder_run() {  # label options...: a numerical failure is a row of the table, not the end of the experiment
+  local label=$1
+  shift
+  build/weavelab run "$scene" "$@" --error-estimate --quiet --out "$out/$label" || true
+}
 labels=()
 IFS=';' read -r -a entries <<<"$runs"
 for entry in "${entries[@]}"; do
   label=${entry%%:*}
   read -r -a options <<<"${entry#*:}"
   echo "error_budget: $label (${options[*]})" >&2
-  # A numerical failure is a row of the table, not the end of the experiment.
-  build/weavelab run "$scene" "${options[@]}" --error-estimate --quiet --out "$out/$label" || true
+  job ladder_run "$label" "${options[@]}"
   labels+=("$label")
 done
+wait_jobs
 /usr/bin/python3 experiments/error_budget.py "$out" "$out/reference" "${labels[@]}"
 echo "error_budget: $(( $(date +%s) - start )) s wall (without the build); results in $out"
