@@ -62,8 +62,9 @@ def main():
     t = [float(r["time_s"]) for r in frames]
     axis = max("xyz", key=lambda c: max(abs(float(r[f"target_{c}"]) - float(frames[0][f"target_{c}"]))
                                           for r in frames))
-    for who, style in (("target", "k-"), ("start", "C1--"), ("fitted", "C0:")):
-        right.plot(t, [float(r[f"{who}_{axis}"]) * 1e3 for r in frames], style, label=who, lw=2)
+    start = "start of the last stage" if len(stages) > 1 else "start"  # frames.csv holds the last stage's
+    for who, style, label in (("target", "k-", "target"), ("start", "C1--", start), ("fitted", "C0:", "fitted")):
+        right.plot(t, [float(r[f"{who}_{axis}"]) * 1e3 for r in frames], style, label=label, lw=2)
     right.set_xlabel("time [s]")
     right.set_ylabel(f"{axis} of point {frames[0]['point']} [mm]")
     right.legend(loc="upper left", fontsize=8)
