@@ -142,12 +142,19 @@ def hanging_table(protocol, randoms):
         print("| " + " | ".join(cells) + " |")
     times = [f"{r['wall_s'] / 60:.1f} / {r['cpu_s'] / 60:.1f} min, {r['iterations']} it., {r['simulations']} sim."
              + stages(r) if r else "–" for r in protocol]
-    rt = [f"{statistics.mean(r['wall_s'] for r in rs) / 60:.1f} / {statistics.mean(r['cpu_s'] for r in rs) / 60:.1f}"
-          f" min each, {'–'.join(str(r['simulations']) for r in rs)} sim." if rs else "–" for rs in randoms]
+    def per_start(rs):
+        if not rs:
+            return "–"
+        minutes = lambda k: "·".join(f"{r[k] / 60:.1f}" for r in rs)
+        return f"{minutes('wall_s')} / {minutes('cpu_s')} min, {'·'.join(str(r['simulations']) for r in rs)} sim. ²"
+    rt = [per_start(rs) for rs in randoms]
     print(f"| wall / CPU time per fit | | {PAPER_HOURS_PER_FIT} | " + " | ".join(times + rt) + " |")
     dist = [distance(r) if r else "–" for r in protocol] + [", ".join(distance(r) for r in rs) or "–" for rs in randoms]
     print("| distance to the target (mean RMS) / the fitted run's time error | | | " + " | ".join(dist) + " |")
     print(f"\n{NO_STD_ERROR}")
+    if any(randoms):
+        print("² per start, from one command with --jobs: while two fits run at once each one's wall time is shared "
+              "and its CPU time is the process's (both fits').")
 
 
 if __name__ == "__main__":
