@@ -65,7 +65,8 @@ struct TrajectoryFitResult {
   std::vector<TrajectoryFitParameter> parameters;
   std::vector<std::vector<double>> correlation;  // empty when unavailable
   std::string covariance_message;                // why it is unavailable
-  // The last stage's (standard errors and identifiability too); `start` above is the first's.
+  // All from the last stage (values, standard errors, identifiability, convergence),
+  // except each parameter's `start` (the first stage's) and the sums over the stages.
   bool converged = false;
   std::string message;  // Ceres's termination message
   int iterations = 0;   // summed over the stages, as the simulations and times
