@@ -174,23 +174,44 @@ std::vector<double> frame_rms(const Simulation& sim, const std::vector<TargetFra
   return rms;
 }
 
+// The simulations a fit has at hand: the last one run and the one at the point
+// Ceres last accepted, so that a rejected last trial step costs no rerun for the
+// statistics and the final positions.
+struct SimulationCache {
+  Simulation last, accepted;
+  std::vector<double> last_p, accepted_p;
+
+  const Simulation& at(Simulator& sim, const std::vector<double>& p) {
+    if (p == last_p && last.ok) return last;  // Ceres asks for the Jacobian at the point it just evaluated
+    if (p == accepted_p && accepted.ok) {
+      last = accepted;
+    } else {
+      last = sim.run(p);
+    }
+    last_p = p;
+    return last;
+  }
+};
+
+std::vector<double> exp_of(const double* theta, int n) {
+  std::vector<double> p(n);
+  for (int k = 0; k < n; ++k) p[k] = std::exp(theta[k]);
+  return p;
+}
+
 class TrajectoryCost final : public ceres::CostFunction {
  public:
-  TrajectoryCost(Simulator& sim, const std::vector<TargetFrame>& frames, Simulation* last, std::vector<double>* last_p)
-      : sim_(sim), frames_(frames), last_(last), last_p_(last_p) {
+  TrajectoryCost(Simulator& sim, const std::vector<TargetFrame>& frames, SimulationCache* cache, int n)
+      : sim_(sim), frames_(frames), cache_(cache) {
     set_num_residuals(static_cast<int>(3 * frames.front().points.rows() * frames.size()));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(last_p->size()));
+    mutable_parameter_block_sizes()->push_back(n);
   }
 
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
     const int n = parameter_block_sizes()[0];
-    std::vector<double> p(n);
-    for (int k = 0; k < n; ++k) p[k] = std::exp(x[0][k]);
-    if (p != *last_p_ || !last_->ok) {  // Ceres asks for the Jacobian at the point it just evaluated
-      *last_ = sim_.run(p);
-      *last_p_ = p;
-    }
-    if (!last_->ok) return false;  // Ceres retries with a shorter step
+    const std::vector<double> p = exp_of(x[0], n);
+    const Simulation& last = cache_->at(sim_, p);
+    if (!last.ok) return false;  // Ceres retries with a shorter step
     const Observation& o = sim_.observation();
     int row = 0;
     for (size_t f = 0; f < frames_.size(); ++f) {
@@ -198,9 +219,9 @@ class TrajectoryCost final : public ceres::CostFunction {
       for (Eigen::Index i = 0; i < points; ++i) {
         const bool seen = o.seen[f][i];
         for (int c = 0; c < 3; ++c, ++row) {
-          residuals[row] = seen ? last_->y[f][3 * i + c] - frames_[f].points(i, c) : 0.0;
+          residuals[row] = seen ? last.y[f][3 * i + c] - frames_[f].points(i, c) : 0.0;
           if (jacobians && jacobians[0])
-            for (int k = 0; k < n; ++k) jacobians[0][row * n + k] = seen ? last_->dy[f](3 * i + c, k) * p[k] : 0.0;
+            for (int k = 0; k < n; ++k) jacobians[0][row * n + k] = seen ? last.dy[f](3 * i + c, k) * p[k] : 0.0;
         }
       }
     }
@@ -210,16 +231,29 @@ class TrajectoryCost final : public ceres::CostFunction {
  private:
   Simulator& sim_;
   const std::vector<TargetFrame>& frames_;
-  Simulation* last_;
-  std::vector<double>* last_p_;
+  SimulationCache* cache_;
 };
 
+// Per iteration: the cost, the accepted point's simulation kept, progress.
 class Progress final : public ceres::IterationCallback {
  public:
-  Progress(const Simulator& sim, int residuals, bool print, std::vector<double>* history)
-      : sim_(sim), residuals_(residuals), print_(print), history_(history), t0_(Clock::now()) {}
+  Progress(const Simulator& sim, SimulationCache* cache, const double* theta, int n, int residuals, bool print,
+           std::vector<double>* history)
+      : sim_(sim),
+        cache_(cache),
+        theta_(theta),
+        n_(n),
+        residuals_(residuals),
+        print_(print),
+        history_(history),
+        t0_(Clock::now()) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     history_->push_back(s.cost);
+    // θ holds the accepted point (update_state_every_iteration), whose Jacobian Ceres has just asked for.
+    if ((s.iteration == 0 || s.step_is_successful) && cache_->last.ok && exp_of(theta_, n_) == cache_->last_p) {
+      cache_->accepted = cache_->last;
+      cache_->accepted_p = cache_->last_p;
+    }
     if (print_)
       std::fprintf(stderr, "  fit iteration %d: cost %.6g (RMS %.4g mm), %d simulations, %.0f s\n", s.iteration, s.cost,
                    1e3 * std::sqrt(2.0 * s.cost / residuals_ * 3.0), sim_.count(),
@@ -229,13 +263,134 @@ class Progress final : public ceres::IterationCallback {
 
  private:
   const Simulator& sim_;
+  SimulationCache* cache_;
+  const double* theta_;
+  int n_;
   int residuals_;
   bool print_;
   std::vector<double>* history_;
   Clock::time_point t0_;
 };
 
+double largest(const std::vector<double>& x) {
+  return x.empty() ? std::numeric_limits<double>::quiet_NaN() : *std::max_element(x.begin(), x.end());
+}
+
+// One plain fit of `frames` from p_start, θ = log p bounded to [lower, upper];
+// the covariance and identifiability only with `statistics`. Its stages hold
+// this one fit.
+TrajectoryFitResult fit_frames(const Scene& scene, const std::vector<TargetFrame>& frames,
+                               const TrajectoryFitOptions& opt, const std::vector<double>& p_start,
+                               const std::vector<double>& lower, const std::vector<double>& upper, bool statistics) {
+  const auto wall0 = Clock::now();
+  const std::clock_t cpu0 = std::clock();
+  Simulator sim(scene, frames, opt);
+  const int n = static_cast<int>(opt.free.size());
+  std::vector<double> theta(n);
+  for (int k = 0; k < n; ++k) theta[k] = std::clamp(std::log(p_start[k]), lower[k], upper[k]);
+  const std::vector<double> p0 = exp_of(theta.data(), n);
+
+  TrajectoryFitResult result;
+  result.observed_points = sim.observation().min_seen;
+  for (const TargetFrame& f : frames) result.times.push_back(f.time);
+  TrajectoryFitStage stage;
+  stage.frames = static_cast<int>(frames.size());
+  stage.start = p_start;
+  auto finish = [&] {
+    stage.simulations = result.simulations = sim.count();
+    stage.start_rms = largest(result.start_rms);
+    stage.final_rms = largest(result.final_rms);
+    stage.wall_s = result.wall_s = std::chrono::duration<double>(Clock::now() - wall0).count();
+    stage.cpu_s = result.cpu_s = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
+    stage.converged = result.converged;
+    stage.message = result.message;
+    stage.iterations = result.iterations;
+    result.stages = {stage};
+    return result;
+  };
+  // The start's per-frame distance (also Ceres's first evaluation, from the cache).
+  SimulationCache cache;
+  const Simulation& first = cache.at(sim, p0);
+  if (!first.ok) {
+    result.message = "the start does not simulate: " + first.message;
+    return finish();
+  }
+  result.start_rms = frame_rms(first, frames, sim.observation());
+  result.start_positions = first.y;
+
+  ceres::Problem problem;
+  auto* cost = new TrajectoryCost(sim, frames, &cache, n);
+  problem.AddResidualBlock(cost, nullptr, theta.data());
+  for (int k = 0; k < n; ++k) {
+    problem.SetParameterLowerBound(theta.data(), k, lower[k]);
+    problem.SetParameterUpperBound(theta.data(), k, upper[k]);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = opt.max_iterations;
+  so.function_tolerance = 1e-12;
+  so.gradient_tolerance = 1e-14;
+  so.parameter_tolerance = 1e-10;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  Progress progress(sim, &cache, theta.data(), n, cost->num_residuals(), opt.progress, &stage.cost_history);
+  so.callbacks.push_back(&progress);
+  so.update_state_every_iteration = true;  // for Progress; the iterates are the same either way
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &problem, &summary);
+
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.message = summary.message;
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  OptimumStatistics stats;
+  if (statistics) {
+    stats = optimum_statistics(problem, theta.data(), n);
+    result.covariance_message = stats.covariance_message;
+    if (stats.covariance.size()) result.correlation = stats.correlation();
+  }
+  const std::vector<double> p = exp_of(theta.data(), n);
+  for (int k = 0; k < n; ++k) {
+    TrajectoryFitParameter fp;
+    fp.key = opt.free[k];
+    fp.start = p0[k];
+    fp.value = p[k];
+    fp.lower = std::exp(lower[k]);
+    fp.upper = std::exp(upper[k]);
+    const double span = 1e-6 * (upper[k] - lower[k]);
+    fp.at_bound = theta[k] - lower[k] < span || upper[k] - theta[k] < span;
+    fp.identifiable =
+        std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) == stats.unidentifiable.end();
+    // Delta method: σ_p = p·σ_θ.
+    fp.std_error = stats.covariance.size() && fp.identifiable
+                       ? fp.value * std::sqrt(std::max(0.0, stats.covariance(k, k)))
+                       : std::numeric_limits<double>::quiet_NaN();
+    result.parameters.push_back(fp);
+  }
+  stage.value = p;
+  const Simulation& last = cache.at(sim, p);
+  if (last.ok) {
+    result.final_rms = frame_rms(last, frames, sim.observation());
+    result.final_positions = last.y;
+  }
+  return finish();
+}
+
+std::string joined(const std::vector<int>& v) {
+  std::string s;
+  for (int x : v) s += (s.empty() ? "" : ",") + std::to_string(x);
+  return s;
+}
+
 }  // namespace
+
+void check_window(const std::vector<int>& window, int frames) {
+  bool ok = !window.empty() && window.front() >= 1 && window.back() == frames;
+  for (size_t k = 1; k < window.size(); ++k) ok = ok && window[k] > window[k - 1];
+  if (!ok)
+    throw TrajectoryFitError("--growing-window: got " + joined(window) +
+                             ", expected increasing frame counts >= 1 ending at the number of fitted frames (" +
+                             std::to_string(frames) + ")");
+}
 
 TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetFrame>& target,
                                    const TrajectoryFitOptions& opt) {
@@ -253,91 +408,53 @@ TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetF
   if (frames.back().time > scene.duration_s * (1 + 1e-12) + 1e-12)
     throw TrajectoryFitError("the target's frames reach t = " + std::to_string(frames.back().time) +
                              " s, beyond the scene's duration " + std::to_string(scene.duration_s) + " s");
+  const int count = static_cast<int>(frames.size());
+  const std::vector<int> window = opt.window.empty() ? std::vector<int>{count} : opt.window;
+  check_window(window, count);
 
-  Simulator sim(scene, frames, opt);
   const int n = static_cast<int>(opt.free.size());
-  std::vector<double> theta(n), lower(n), upper(n), p0(n);
+  std::vector<double> lower(n), upper(n), p0(n);
   for (int k = 0; k < n; ++k) {
     const auto it = opt.start.find(opt.free[k]);
     p0[k] = it != opt.start.end() ? it->second : scene_parameter(scene, opt.free[k]);
     if (!(p0[k] > 0.0) || !std::isfinite(p0[k]))
       throw TrajectoryFitError("parameter '" + opt.free[k] + "' starts at " + std::to_string(p0[k]) +
                                ": a fitted parameter must start finite and > 0 (it is fitted as log p)");
-    theta[k] = std::log(p0[k]);
-    lower[k] = theta[k] - std::log(opt.bound_factor);
-    upper[k] = theta[k] + std::log(opt.bound_factor);
+    lower[k] = std::log(p0[k]) - std::log(opt.bound_factor);
+    upper[k] = std::log(p0[k]) + std::log(opt.bound_factor);
   }
   for (const auto& [key, value] : opt.start)
     if (std::find(opt.free.begin(), opt.free.end(), key) == opt.free.end())
       throw TrajectoryFitError("--start names '" + key + "', which is not among the fitted keys (--free)");
 
-  Simulation last;
-  std::vector<double> last_p(n, -1.0);
+  // The growing window: each stage starts where the one before ended.
   TrajectoryFitResult result;
-  result.observed_points = sim.observation().min_seen;
-  for (const TargetFrame& f : frames) result.times.push_back(f.time);
-  // The start's per-frame distance (also Ceres's first evaluation, from the cache).
-  last = sim.run(p0);
-  last_p = p0;
-  if (!last.ok) {
-    result.message = "the start does not simulate: " + last.message;
-    return result;
+  std::vector<TrajectoryFitStage> stages;
+  std::vector<double> p = p0;
+  for (size_t s = 0; s < window.size(); ++s) {
+    const bool last = s + 1 == window.size();
+    if (opt.progress && window.size() > 1)
+      std::fprintf(stderr, "fit stage %zu of %zu: the first %d frames\n", s + 1, window.size(), window[s]);
+    result = fit_frames(scene, std::vector<TargetFrame>(frames.begin(), frames.begin() + window[s]), opt, p, lower,
+                        upper, last);
+    stages.push_back(result.stages.front());
+    if (result.final_rms.empty()) {  // it did not simulate: the stages after it cannot start
+      if (!last) {
+        result.converged = false;
+        result.message =
+            "stage " + std::to_string(s + 1) + " (" + std::to_string(window[s]) + " frames): " + result.message;
+      }
+      break;
+    }
+    p = result.stages.front().value;
   }
-  result.start_rms = frame_rms(last, frames, sim.observation());
-  result.start_positions = last.y;
-
-  ceres::Problem problem;
-  auto* cost = new TrajectoryCost(sim, frames, &last, &last_p);
-  problem.AddResidualBlock(cost, nullptr, theta.data());
-  for (int k = 0; k < n; ++k) {
-    problem.SetParameterLowerBound(theta.data(), k, lower[k]);
-    problem.SetParameterUpperBound(theta.data(), k, upper[k]);
+  result.stages = stages;
+  result.iterations = result.simulations = 0;
+  for (const TrajectoryFitStage& st : stages) {
+    result.iterations += st.iterations;
+    result.simulations += st.simulations;
   }
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = opt.max_iterations;
-  so.function_tolerance = 1e-12;
-  so.gradient_tolerance = 1e-14;
-  so.parameter_tolerance = 1e-10;
-  so.num_threads = 1;
-  so.logging_type = ceres::SILENT;
-  const int m = cost->num_residuals();
-  Progress progress(sim, m, opt.progress, &result.cost_history);
-  so.callbacks.push_back(&progress);
-  so.update_state_every_iteration = false;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
-
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
-  result.message = summary.message;
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  const OptimumStatistics stats = optimum_statistics(problem, theta.data(), n);
-  result.covariance_message = stats.covariance_message;
-  if (stats.covariance.size()) result.correlation = stats.correlation();
-  std::vector<double> p(n);
-  for (int k = 0; k < n; ++k) {
-    TrajectoryFitParameter fp;
-    fp.key = opt.free[k];
-    fp.start = p0[k];
-    fp.value = p[k] = std::exp(theta[k]);
-    fp.lower = std::exp(lower[k]);
-    fp.upper = std::exp(upper[k]);
-    const double span = 1e-6 * (upper[k] - lower[k]);
-    fp.at_bound = theta[k] - lower[k] < span || upper[k] - theta[k] < span;
-    fp.identifiable =
-        std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) == stats.unidentifiable.end();
-    // Delta method: σ_p = p·σ_θ.
-    fp.std_error = stats.covariance.size() && fp.identifiable
-                       ? fp.value * std::sqrt(std::max(0.0, stats.covariance(k, k)))
-                       : std::numeric_limits<double>::quiet_NaN();
-    result.parameters.push_back(fp);
-  }
-  if (p != last_p || !last.ok) last = sim.run(p);
-  if (last.ok) {
-    result.final_rms = frame_rms(last, frames, sim.observation());
-    result.final_positions = last.y;
-  }
-  result.simulations = sim.count();
+  for (int k = 0; k < static_cast<int>(result.parameters.size()); ++k) result.parameters[k].start = p0[k];
   result.wall_s = std::chrono::duration<double>(Clock::now() - wall0).count();
   result.cpu_s = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
   return result;

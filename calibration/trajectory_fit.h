@@ -32,8 +32,24 @@ struct TrajectoryFitOptions {
   std::vector<std::string> free;        // scene keys (calibration/scene_parameters.h)
   std::map<std::string, double> start;  // start values; absent keys start at the scene's value
   double bound_factor = 100.0;
-  int max_iterations = 50;
+  int max_iterations = 50;  // per stage
+  // Growing window (frame continuation, docs/calibration.md §7.1): the first
+  // window[0] frames are fitted, then the first window[1] from that result, …;
+  // increasing, the last equal to the number of frames. Empty: one stage, all frames.
+  std::vector<int> window;
   bool progress = false;
+};
+
+// One stage of a growing window (the whole fit when there is no window).
+struct TrajectoryFitStage {
+  int frames = 0;
+  std::vector<double> start, value;  // per free key
+  bool converged = false;
+  std::string message;  // Ceres's termination message, or why the stage could not run
+  int iterations = 0, simulations = 0;
+  double wall_s = 0.0, cpu_s = 0.0;
+  double start_rms = 0.0, final_rms = 0.0;  // largest per-frame RMS distance to the target [m] (NaN: no simulation)
+  std::vector<double> cost_history;         // Ceres cost per iteration (iteration 0 = start)
 };
 
 struct TrajectoryFitParameter {
@@ -49,16 +65,19 @@ struct TrajectoryFitResult {
   std::vector<TrajectoryFitParameter> parameters;
   std::vector<std::vector<double>> correlation;  // empty when unavailable
   std::string covariance_message;                // why it is unavailable
+  // All from the last stage (values, standard errors, identifiability, convergence),
+  // except each parameter's `start` (the first stage's) and the sums over the stages.
   bool converged = false;
   std::string message;  // Ceres's termination message
-  int iterations = 0;
+  int iterations = 0;   // summed over the stages, as the simulations and times
   int simulations = 0;
   double wall_s = 0.0, cpu_s = 0.0;
+  std::vector<TrajectoryFitStage> stages;             // in order; one without a window
   int observed_points = 0;                            // per frame
-  std::vector<double> cost_history;                   // Ceres cost per iteration (iteration 0 = start)
-  std::vector<double> times;                          // the fitted frames
-  std::vector<double> start_rms, final_rms;           // per frame, RMS distance to the target [m]
-  std::vector<Vec> start_positions, final_positions;  // per frame, the observed points (x₀,y₀,z₀,x₁,…) [m]
+  std::vector<double> times;                          // the last stage's frames
+  std::vector<double> start_rms, final_rms;           // per frame of the last stage, RMS distance to the target [m],
+  std::vector<Vec> start_positions, final_positions;  // and the observed points (x₀,y₀,z₀,x₁,…) [m], at its start
+                                                      // and at its end
 };
 
 class TrajectoryFitError : public std::invalid_argument {  // bad input: exit 2
@@ -66,13 +85,18 @@ class TrajectoryFitError : public std::invalid_argument {  // bad input: exit 2
   using std::invalid_argument::invalid_argument;
 };
 
-// Fits opt.free to `target` (its frames at t > 0, in order). Throws
+// Fits opt.free to `target` (its frames at t > 0, in order), stage by stage
+// when opt.window is set: stage k starts at stage k−1's values and is a plain
+// fit of its frames within the bounds of the first start. Throws
 // TrajectoryFitError for inputs that cannot be fitted (unknown or
 // non-differentiable key, a target that does not match the scene, an
 // integrator without sensitivities). A start that does not simulate is an
 // outcome (message), not an exception.
 TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetFrame>& target,
                                    const TrajectoryFitOptions& opt);
+
+// Throws TrajectoryFitError unless `window` is a valid growing window over `frames` frames.
+void check_window(const std::vector<int>& window, int frames);
 
 // Independent fits (random starts), `threads` at a time, each with its own
 // models and integrators: result k is bitwise fit_trajectory(scene, target,

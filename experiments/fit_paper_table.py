@@ -2,7 +2,9 @@
 """Markdown table of experiments/fit_paper.sh: per parameter the ground truth
 (the scene's value), Gong et al. 2022's recovered value (Table 2, 17×17
 Plain-(1,2), 25 frames), ours from 5, 10 and 25 frames (protocol start) and
-the mean ± std over the random starts, with relative errors and wall times.
+the mean ± std over the random starts from 5 and 25 frames, with relative errors
+(the largest over the random starts), wall and CPU times, the stages of a
+growing window, and the distance to the target beside the fitted run's time error.
 Then, for the fits named slide_* (μ where yarns slide, the slide_pull scene),
 each free parameter's truth, start and fitted value with the fit's cost.
 Usage: fit_paper_table.py DIR
@@ -51,7 +53,7 @@ def main():
     found = glob.glob(os.path.join(d, "*", "fit.json")) + glob.glob(os.path.join(d, "*", "start_*", "fit.json"))
     runs = {os.path.relpath(os.path.dirname(p), d): load(p) for p in found}
     protocol = [runs.get(f"protocol_{n}") for n in (5, 10, 25)]
-    randoms = [r for name, r in sorted(runs.items()) if name.startswith("random_")]
+    randoms = [[r for name, r in sorted(runs.items()) if name.startswith(f"random_{n}/")] for n in (5, 25)]
     slides = sorted(((n, r) for n, r in runs.items() if n.startswith("slide_")), key=lambda x: (len(x[1]["parameters"]), x[0]))
     if not any(protocol) and not slides:
         fail(f"{d}: no protocol_N/fit.json or slide_NAME/fit.json (run experiments/fit_paper.sh)")
@@ -91,11 +93,32 @@ def slide_table(slides):
         print(f"\n{NO_STD_ERROR}")
 
 
+def stages(run):
+    """'5·10·25 fr.: 6·2·2 it., 7·3·3 sim.' for a growing window, else ''."""
+    st = run.get("stages", [])
+    if len(st) < 2:
+        return ""
+    dot = lambda k: "·".join(str(s[k]) for s in st)
+    return f"; {dot('frames')} fr.: {dot('iterations')} it., {dot('simulations')} sim."
+
+
+def distance(run):
+    """The fitted run's mean RMS distance to the target beside its time error (fit.json error_budget)."""
+    b = run.get("error_budget", {})
+    te = b.get("fitted_time_error", {})
+    te = te.get("mean_rms_m") if isinstance(te, dict) else None
+    mm = lambda x: f"{1e3 * x:.2g} mm" if isinstance(x, (int, float)) else "–"
+    return f"{mm(b.get('distance_mean_rms_m'))} / {mm(te)}"
+
+
 def hanging_table(protocol, randoms):
-    scene = next(r for r in protocol if r)["scene"]["text"]
+    scene = next(r for r in protocol + [r for rs in randoms for r in rs] if r)["scene"]["text"]
     value = lambda run, key: next(p["value"] for p in run["parameters"] if p["key"] == key)
     ident = lambda run, key: next(p.get("std_error") is not None for p in run["parameters"] if p["key"] == key)
-    head = "| parameter | truth | paper (25 fr.) | ours 5 fr. | ours 10 fr. | ours 25 fr. | random starts, 5 fr. |"
+    window = lambda run: " (window " + ", ".join(str(s["frames"]) for s in run["stages"]) + ")" \
+        if run and len(run.get("stages", [])) > 1 else ""
+    head = ("| parameter | truth | paper (25 fr.) | ours 5 fr. | ours 10 fr. | ours 25 fr." + window(protocol[2]) +
+            " | random starts, 5 fr. | random starts, 25 fr." + window(next(iter(randoms[1]), None)) + " |")
     print(head)
     print("|" + "---|" * (head.count("|") - 1))
     for key, paper in PAPER.items():
@@ -107,19 +130,31 @@ def hanging_table(protocol, randoms):
                 continue
             v = value(run, key)
             cells.append(f"{v:.4g} ({rel(v, t)})" + ("" if ident(run, key) else " ¹"))
-        if randoms:
-            vs = [value(r, key) for r in randoms]
+        for rs in randoms:
+            if not rs:
+                cells.append("–")
+                continue
+            vs = [value(r, key) for r in rs]
             sd = statistics.stdev(vs) if len(vs) > 1 else 0.0
-            cells.append(f"{statistics.mean(vs):.4g} ± {sd:.2g}")
-        else:
-            cells.append("–")
+            worst = max(vs, key=lambda v: abs(v - t))
+            cells.append(f"{statistics.mean(vs):.4g} ± {sd:.2g} (≤ {rel(worst, t)})" +
+                         ("" if all(ident(r, key) for r in rs) else " ¹"))
         print("| " + " | ".join(cells) + " |")
-    times = [f"{r['wall_s'] / 60:.1f} / {r['cpu_s'] / 60:.1f} min, {r['simulations']} sim." if r else "–"
-             for r in protocol]
-    rt = (f"{statistics.mean(r['wall_s'] for r in randoms) / 60:.1f} / "
-          f"{statistics.mean(r['cpu_s'] for r in randoms) / 60:.1f} min each" if randoms else "–")
-    print(f"| wall / CPU time per fit | | {PAPER_HOURS_PER_FIT} | " + " | ".join(times) + f" | {rt} |")
+    times = [f"{r['wall_s'] / 60:.1f} / {r['cpu_s'] / 60:.1f} min, {r['iterations']} it., {r['simulations']} sim."
+             + stages(r) if r else "–" for r in protocol]
+    def per_start(rs):
+        if not rs:
+            return "–"
+        minutes = lambda k: "·".join(f"{r[k] / 60:.1f}" for r in rs)
+        return f"{minutes('wall_s')} / {minutes('cpu_s')} min, {'·'.join(str(r['simulations']) for r in rs)} sim. ²"
+    rt = [per_start(rs) for rs in randoms]
+    print(f"| wall / CPU time per fit | | {PAPER_HOURS_PER_FIT} | " + " | ".join(times + rt) + " |")
+    dist = [distance(r) if r else "–" for r in protocol] + [", ".join(distance(r) for r in rs) or "–" for rs in randoms]
+    print("| distance to the target (mean RMS) / the fitted run's time error | | | " + " | ".join(dist) + " |")
     print(f"\n{NO_STD_ERROR}")
+    if any(randoms):
+        print("² per start, from one command with --jobs: while two fits run at once each one's wall time is shared "
+              "and its CPU time is the process's (both fits').")
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Chart of a `weavelab fit` output folder (docs/calibration.md §7):
-fit.png/.svg  left: RMS distance to the target per Ceres iteration;
+fit.png/.svg  left: RMS distance to the target per Ceres iteration (one line
+              per stage of a growing window, over that stage's frames);
               right: the point that moves most, target against the start and
               the fitted trajectory (its coordinate with the largest motion),
               with the RMS distance of all points per frame.
@@ -41,10 +42,18 @@ def main():
         fail(f"{a.dir}: convergence.csv or frames.csv has no rows")
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
-    it = [int(r["iteration"]) for r in conv]
-    rms = [float(r["rms_m"]) * 1e3 for r in conv]
-    left.semilogy(it, rms, "o-")
-    left.set_xlabel("Ceres iteration")
+    stages = {}  # stage → rows; folders written before the growing window have no stage column
+    for r in conv:
+        stages.setdefault(int(r.get("stage", 1)), []).append(r)
+    at = 0
+    for stage, rows in sorted(stages.items()):
+        it = [at + int(r["iteration"]) for r in rows]
+        label = f"stage {stage}: {rows[0]['frames']} frames" if len(stages) > 1 else None
+        left.semilogy(it, [float(r["rms_m"]) * 1e3 for r in rows], "o-", label=label)
+        at = it[-1] + 1
+    if len(stages) > 1:
+        left.legend(fontsize=8)
+    left.set_xlabel("Ceres iteration" + (" (stages one after the other)" if len(stages) > 1 else ""))
     left.set_ylabel("RMS distance to the target [mm]")
     left.set_title(f"{meta['model']} model, {meta['frames']} frames, {meta['simulations']} simulations, "
                    f"{meta['wall_s']:.0f} s", fontsize=9)
@@ -53,8 +62,9 @@ def main():
     t = [float(r["time_s"]) for r in frames]
     axis = max("xyz", key=lambda c: max(abs(float(r[f"target_{c}"]) - float(frames[0][f"target_{c}"]))
                                           for r in frames))
-    for who, style in (("target", "k-"), ("start", "C1--"), ("fitted", "C0:")):
-        right.plot(t, [float(r[f"{who}_{axis}"]) * 1e3 for r in frames], style, label=who, lw=2)
+    start = "start of the last stage" if len(stages) > 1 else "start"  # frames.csv holds the last stage's
+    for who, style, label in (("target", "k-", "target"), ("start", "C1--", start), ("fitted", "C0:", "fitted")):
+        right.plot(t, [float(r[f"{who}_{axis}"]) * 1e3 for r in frames], style, label=label, lw=2)
     right.set_xlabel("time [s]")
     right.set_ylabel(f"{axis} of point {frames[0]['point']} [mm]")
     right.legend(loc="upper left", fontsize=8)

@@ -6,6 +6,7 @@
 // 2 bad scene, input file or arguments, or an output folder in use,
 // 3 output could not be written, 130 / 143 interrupted by SIGINT / SIGTERM.
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -292,6 +293,10 @@ int main(int argc, char** argv) {
   fit->add_option("--jobs", fit_jobs, "Fits of --start-set run at once (each on its own models; same results)")
       ->capture_default_str();
   fit->add_option("--frames", fitc.frames, "Fit the target's first N frames after t = 0 (default all)");
+  std::string fit_window;
+  fit->add_option("--growing-window", fit_window,
+                  "N1,N2,...: fit the first N1 frames, then the first N2 from that result, ...; increasing, the "
+                  "last equal to --frames (each stage at most --max-iterations)");
   fit->add_option("--model", fitc.fit.model, "Model that is fitted: yarn, fem")->capture_default_str();
   fit->add_option("--integrator", fitc.fit.integrator,
                   "An integrator with parameter sensitivities: be-linear, be-newton or sdirk2 (default the scene's)");
@@ -580,6 +585,13 @@ int main(int argc, char** argv) {
         start[s.substr(0, eq)] = v[0];
       };
       for (const std::string& s : fit_starts) read_start(s, fitc.fit.start);
+      if (fit->count("--growing-window"))
+        for (double x : split_numbers(fit_window, "--growing-window")) {
+          if (x != std::floor(x) || x > 1e6)
+            throw std::invalid_argument("--growing-window: got '" + fit_window +
+                                        "', expected increasing frame counts N1,N2,... (e.g. 5,10,25)");
+          fitc.fit.window.push_back(static_cast<int>(x));
+        }
       if (fit_jobs < 1) throw std::invalid_argument("--jobs: got " + std::to_string(fit_jobs) + ", expected >= 1");
       if (fit->count("--max-iterations") && fitc.fit.max_iterations < 1)
         throw std::invalid_argument("--max-iterations: got " + std::to_string(fitc.fit.max_iterations) +
@@ -612,8 +624,14 @@ int main(int argc, char** argv) {
         std::cerr << "weavelab: fit: " << r.message << "\n";
         return 1;
       }
+      for (size_t k = 0; r.stages.size() > 1 && k < r.stages.size(); ++k)
+        std::cerr << "weavelab: fit: stage " << k + 1 << ", " << r.stages[k].frames
+                  << " frames: " << r.stages[k].iterations << " iterations, " << r.stages[k].simulations
+                  << " simulations, " << r.stages[k].wall_s << " s wall, " << r.stages[k].cpu_s << " s CPU; "
+                  << r.stages[k].message << "\n";
       std::cerr << "weavelab: fit: " << r.iterations << " iterations, " << r.simulations << " simulations, " << r.wall_s
-                << " s; RMS distance " << 1e3 * r.start_rms.back() << " mm at the start, " << 1e3 * r.final_rms.back()
+                << " s; RMS distance " << 1e3 * r.start_rms.back() << " mm at the "
+                << (r.stages.size() > 1 ? "last stage's " : "") << "start, " << 1e3 * r.final_rms.back()
                 << " mm fitted (last frame); " << r.message << "; results in " << fitc.out_dir.string() << "\n";
       for (const auto& p : r.parameters)
         std::cerr << "  " << p.key << " = " << p.value << " +- " << p.std_error << " (start " << p.start << ")\n";

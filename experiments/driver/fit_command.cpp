@@ -95,6 +95,7 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
     throw TrajectoryFitError("--frames: got " + std::to_string(c.frames) + ", the target " + c.target_dir.string() +
                              " has " + std::to_string(p.target.size()) + " frames after t = 0");
   for (const auto& [key, value] : c.fit.start) scene_parameter(p.scene, key);  // an unknown key: exit 2
+  if (!c.fit.window.empty()) check_window(c.fit.window, static_cast<int>(p.target.size()));
   return p;
 }
 
@@ -150,6 +151,21 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
   j.set("simulations", r.simulations);
   j.set("wall_s", r.wall_s);
   j.set("cpu_s", r.cpu_s);
+  Json stages = Json::array();                   // the growing window's stages (one without --growing-window)
+  for (const TrajectoryFitStage& st : r.stages)  // a RMS of a stage that did not simulate is NaN: null
+    stages.push(Json::object()
+                    .set("frames", st.frames)
+                    .set("start", Json(st.start))
+                    .set("value", Json(st.value))
+                    .set("converged", st.converged)
+                    .set("message", st.message)
+                    .set("iterations", st.iterations)
+                    .set("simulations", st.simulations)
+                    .set("wall_s", st.wall_s)
+                    .set("cpu_s", st.cpu_s)
+                    .set("start_rms_m", st.start_rms)
+                    .set("final_rms_m", st.final_rms));
+  j.set("stages", std::move(stages));
   if (!r.start_rms.empty()) j.set("start_rms_m", *std::max_element(r.start_rms.begin(), r.start_rms.end()));
   if (!r.final_rms.empty()) j.set("final_rms_m", *std::max_element(r.final_rms.begin(), r.final_rms.end()));
   if (!r.final_rms.empty()) j.set("error_budget", fit_error_budget(c, p, r));
@@ -168,10 +184,14 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
                               {"created", utc_now()}});
   }
 
-  CsvTable conv(c.out_dir / "convergence.csv", {"iteration", "cost", "rms_m"});
-  const double per_point = 2.0 / (r.observed_points * std::max<size_t>(1, r.times.size()));
-  for (size_t i = 0; i < r.cost_history.size(); ++i)
-    conv.row({std::to_string(i), num(r.cost_history[i]), num(std::sqrt(per_point * r.cost_history[i]))});
+  CsvTable conv(c.out_dir / "convergence.csv", {"stage", "frames", "iteration", "cost", "rms_m"});
+  for (size_t s = 0; s < r.stages.size(); ++s) {
+    const TrajectoryFitStage& st = r.stages[s];
+    const double per_point = 2.0 / (r.observed_points * std::max(1, st.frames));
+    for (size_t i = 0; i < st.cost_history.size(); ++i)
+      conv.row({std::to_string(s + 1), std::to_string(st.frames), std::to_string(i), num(st.cost_history[i]),
+                num(std::sqrt(per_point * st.cost_history[i]))});
+  }
   conv.commit();
 
   // The point that moves most in the target, for the trajectory chart.

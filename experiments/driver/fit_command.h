@@ -2,8 +2,9 @@
 // (calibration/trajectory_fit.h, docs/calibration.md §7). Writes into the output folder
 //   params.toml     (continuum fits) the FEM parameter file, for `run --fem-params`
 //   fit.json        parameters (key, start, value, std_error, bounds), correlations,
-//                   iterations, simulations, wall and CPU time, git revision
-//   convergence.csv Ceres cost and RMS distance per iteration
+//                   iterations, simulations, wall and CPU time, git revision, and
+//                   per stage of a growing window its frames, start, values and times
+//   convergence.csv Ceres cost and RMS distance per stage and iteration
 //   frames.csv      per fitted frame: RMS distance to the target at the start and
 //                   at the fit, and the target, start and fitted position of the
 //                   point that moves most

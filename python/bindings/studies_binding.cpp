@@ -39,7 +39,7 @@ bool calibrate(const std::string& scene_path, const std::string& out, const std:
 bool fit(const std::string& scene_path, const std::string& target, const std::vector<std::string>& free,
          const std::string& out, const std::map<std::string, double>& start, int frames, const std::string& model,
          const std::string& integrator, double bound_factor, int max_iterations, const std::string& fem_params,
-         bool progress) {
+         const std::vector<int>& window, bool progress) {
   FitCommandConfig c;
   c.scene_path = scene_path;
   c.target_dir = target;
@@ -52,6 +52,7 @@ bool fit(const std::string& scene_path, const std::string& target, const std::ve
   c.fit.integrator = integrator;
   c.fit.bound_factor = bound_factor;
   c.fit.max_iterations = max_iterations;
+  c.fit.window = window;
   c.fit.progress = progress;
   const FitCommandPlan plan = plan_fit(c);  // every input checked; nothing written yet
   py::gil_scoped_release release;
@@ -66,7 +67,7 @@ void bind_studies(py::module_& m) {
         py::arg("border_strip"), py::arg("validate"), py::arg("resolution"), py::arg("rtol"), py::arg("progress"));
   m.def("_fit", &fit, py::arg("scene"), py::arg("target"), py::arg("free"), py::arg("out"), py::arg("start"),
         py::arg("frames"), py::arg("model"), py::arg("integrator"), py::arg("bound_factor"), py::arg("max_iterations"),
-        py::arg("fem_params"), py::arg("progress"));
+        py::arg("fem_params"), py::arg("window"), py::arg("progress"));
 }
 
 }  // namespace wl::python

@@ -172,13 +172,15 @@ def calibrate(scene, out, *, tests=(), free=(), patch=0, ladders=None, starts=4,
 
 
 def fit(scene, target, free, out, *, start=None, frames=0, model="yarn", integrator="", bound_factor=100.0,
-        max_iterations=50, fem_params="", progress=False):
+        max_iterations=50, fem_params="", window=(), progress=False):
     """`weavelab fit`: fits scene keys (`free`) to the frames of the run folder
     `target` (a run with out=...) and writes OUT (fit.json, convergence.csv,
-    frames.csv). Returns fit.json as a dict, with "out" and "converged" added."""
+    frames.csv); `window` = (N1, N2, ...) is `--growing-window`. Returns fit.json
+    as a dict, with "out" and "converged" added."""
     out = os.fspath(out)
     converged = _core._fit(_scene_file(scene, out), os.fspath(target), list(free), out, dict(start or {}), frames,
-                           model, integrator, bound_factor, max_iterations, os.fspath(fem_params), progress)
+                           model, integrator, bound_factor, max_iterations, os.fspath(fem_params), list(window),
+                           progress)
     result = _read_json(os.path.join(out, "fit.json"))
     result.update(out=out, converged=converged)
     return result

@@ -84,6 +84,49 @@ TEST(TrajectoryFit, RecoversYarnParametersFromTheirOwnTrajectory) {
   }
 }
 
+// A growing window: the first frame fitted, then all three from that result.
+// The second stage starts at the first's values and ends where a plain fit of
+// the three frames from those values ends; from an off start it finds the truth.
+TEST(TrajectoryFit, GrowingWindowStagesAreFitsFromThePreviousStagesResult) {
+  const Scene truth = small_scene();
+  const auto target = record<YarnModel>(truth, yarn_nodes);
+  TrajectoryFitOptions opt;
+  const std::string rho = yarn_type_key("default", kDensityField);
+  opt.free = {kShearModulusKey, rho};
+  opt.start = {{kShearModulusKey, 1400.0}, {rho, 1.5e-3}};
+  opt.window = {1, 3};
+  const TrajectoryFitResult windowed = fit_trajectory(truth, target, opt);
+  ASSERT_EQ(windowed.stages.size(), 2u);
+  const TrajectoryFitStage &first = windowed.stages[0], &second = windowed.stages[1];
+  EXPECT_TRUE(windowed.converged) << windowed.message;
+  for (const TrajectoryFitParameter& p : windowed.parameters)
+    EXPECT_NEAR(p.value, scene_parameter(truth, p.key), 1e-4 * scene_parameter(truth, p.key)) << p.key;
+  EXPECT_LT(second.final_rms, 1e-3 * first.start_rms);
+  EXPECT_EQ(first.frames, 1);
+  EXPECT_EQ(second.frames, 3);
+  EXPECT_EQ(first.start, (std::vector<double>{1400.0, 1.5e-3}));
+  EXPECT_EQ(second.start, first.value);
+  EXPECT_NE(first.value, first.start);  // the first stage moved
+  EXPECT_EQ(windowed.times.size(), 3u);
+  EXPECT_EQ(windowed.iterations, first.iterations + second.iterations);
+  EXPECT_EQ(windowed.simulations, first.simulations + second.simulations);
+  for (size_t k = 0; k < opt.free.size(); ++k) {
+    EXPECT_EQ(windowed.parameters[k].start, first.start[k]) << opt.free[k];  // the fit's start is the first stage's
+    EXPECT_EQ(windowed.parameters[k].value, second.value[k]) << opt.free[k];
+  }
+
+  TrajectoryFitOptions plain = opt;
+  plain.window.clear();
+  plain.start = {{kShearModulusKey, first.value[0]}, {rho, first.value[1]}};
+  const TrajectoryFitResult from_first = fit_trajectory(truth, target, plain);
+  ASSERT_EQ(from_first.stages.size(), 1u);
+  EXPECT_EQ(from_first.stages[0].cost_history, second.cost_history);
+  EXPECT_EQ(from_first.stages[0].value, second.value);
+  EXPECT_EQ(from_first.final_positions, windowed.final_positions);
+  for (size_t k = 0; k < opt.free.size(); ++k)
+    EXPECT_EQ(from_first.parameters[k].std_error, windowed.parameters[k].std_error) << opt.free[k];
+}
+
 // Independent starts fitted two at a time, each on its own models, end
 // bitwise where the same fits end one after the other.
 TEST(TrajectoryFit, ParallelStartsEqualSerialFitsBitwise) {
@@ -102,7 +145,7 @@ TEST(TrajectoryFit, ParallelStartsEqualSerialFitsBitwise) {
     const TrajectoryFitResult serial = fit_trajectory(truth, target, fits[k]);
     EXPECT_NE(serial.parameters[0].value, starts[k]);  // the fit moved
     EXPECT_EQ(parallel[k].parameters[0].value, serial.parameters[0].value) << "start " << k;
-    EXPECT_EQ(parallel[k].cost_history, serial.cost_history) << "start " << k;
+    EXPECT_EQ(parallel[k].stages[0].cost_history, serial.stages[0].cost_history) << "start " << k;
     ASSERT_EQ(parallel[k].final_positions.size(), serial.final_positions.size());
     for (size_t f = 0; f < serial.final_positions.size(); ++f)
       EXPECT_EQ(parallel[k].final_positions[f], serial.final_positions[f]) << "start " << k << ", frame " << f;
@@ -181,6 +224,11 @@ TEST(TrajectoryFit, RejectsWhatCannotBeFitted) {
   target[0].points = Eigen::MatrixXd::Zero(24, 3);
   EXPECT_THROW(fit_trajectory(s, target, opt), TrajectoryFitError);
   target[0].points = Eigen::MatrixXd::Zero(25, 3);
+  opt.window = {1, 1};  // a growing window must grow
+  EXPECT_THROW(fit_trajectory(s, target, opt), TrajectoryFitError);
+  opt.window = {2};  // and end at the target's one frame
+  EXPECT_THROW(fit_trajectory(s, target, opt), TrajectoryFitError);
+  opt.window.clear();
   target[0].time = 1.0;  // beyond the duration
   EXPECT_THROW(fit_trajectory(s, target, opt), TrajectoryFitError);
 }

@@ -34,9 +34,10 @@ class FitCli : public ::testing::Test {
   fs::path scene_;
 };
 
+// Through a growing window: the first frame, then both.
 TEST_F(FitCli, RecoversTheShearModulusOfItsOwnRun) {
   const fs::path out = dir_ / "fit";
-  const auto r = fit("--free contact.shear_modulus_Pa --start contact.shear_modulus_Pa=1500", out);
+  const auto r = fit("--free contact.shear_modulus_Pa --start contact.shear_modulus_Pa=1500 --growing-window 1,2", out);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* file : {"fit.json", "convergence.csv", "frames.csv"}) EXPECT_TRUE(fs::exists(out / file)) << file;
   std::stringstream json;
@@ -45,8 +46,14 @@ TEST_F(FitCli, RecoversTheShearModulusOfItsOwnRun) {
                             "\"std_error\"", "\"correlation\"", "\"simulations\"", "\"cpu_s\"", "\"git_revision\"",
                             "\"fitted_time_error\"", "\"method\": \"richardson\"", "\"target_time_error_mean_rms_m\": ",
                             // the fit recovers the target's own parameters: the distance is far below either time error
-                            "\"verdict\": \"time error exceeds the distance\""})
+                            "\"verdict\": \"time error exceeds the distance\"",
+                            // the stages, each with its frames
+                            "\"stages\": [", "\"frames\": 1,", "\"frames\": 2,"})
     EXPECT_NE(json.str().find(field), std::string::npos) << field << "\n" << json.str();
+  std::stringstream conv;
+  conv << std::ifstream(out / "convergence.csv").rdbuf();
+  EXPECT_EQ(conv.str().rfind("stage,frames,iteration,cost,rms_m\n1,1,0,", 0), 0u) << conv.str();
+  EXPECT_NE(conv.str().find("\n2,2,0,"), std::string::npos) << conv.str();
   EXPECT_NE(r.output.find("contact.shear_modulus_Pa = 1000"), std::string::npos) << r.output;  // the scene default
 }
 
@@ -92,6 +99,14 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
        "not among the fitted keys"},
       {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=x", "--start"},
       {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=900 --jobs 0", "--jobs"},
+      {"--free contact.shear_modulus_Pa --growing-window 1,x", "--growing-window: got 'x'"},
+      {"--free contact.shear_modulus_Pa --growing-window 1,1.5", "--growing-window: got '1,1.5'"},
+      {"--free contact.shear_modulus_Pa --growing-window 2,2", "--growing-window: got 2,2"},
+      {"--free contact.shear_modulus_Pa --growing-window 0,2", "--growing-window: got '0'"},
+      {"--free contact.shear_modulus_Pa --growing-window 1,3", "--growing-window: got 1,3"},  // the target has 2
+      {"--free contact.shear_modulus_Pa --frames 1 --growing-window 1,2", "--growing-window: got 1,2"},
+      {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=900 --growing-window 2,1",
+       "--growing-window: got 2,1"},
   };
   for (const auto& c : cases) {
     const auto r = fit(c.args, out);
