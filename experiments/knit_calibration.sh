@@ -6,14 +6,15 @@
 # curve's range and by the response at each load — then
 # knit_calibration_table.py tabulates each curve's residual as % of its range per
 # law and R(0) (OUT/table.md). WL_OUT changes the folder (default
-# results/knit_calibration), WL_PATCH the patch; extra arguments go to every
+# results/knit_calibration), WL_PATCH the patch, WL_SCENES the scenes, WL_TESTS the
+# tests; extra arguments go to every
 # `weavelab calibrate` (e.g. --sliding).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${WL_OUT:-results/knit_calibration}
 patch=${WL_PATCH:-8}
 scenes=${WL_SCENES:-"stockinette garter"}
-tests=uniaxial-warp,uniaxial-weft,biaxial,shear,bending-warp,bending-weft
+tests=${WL_TESTS:-uniaxial-warp,uniaxial-weft,biaxial,shear,bending-warp,bending-weft}
 mkdir -p "$out"
 for s in $scenes; do
   for law in linear spline; do

@@ -25,7 +25,8 @@ def main(root):
     for scene, laws in scenes.items():
         first = next(iter(laws.values()))
         print(f"\n{scene}, patch {first['patch']} × {first['patch']}, sliding {str(first['sliding']).lower()}\n")
-        print("| test | R(0) [% of range] | " + " | ".join(laws) + " |")
+        names = [law + ("" if c["fit"]["converged"] else " (not converged)") for law, c in laws.items()]
+        print("| test | R(0) [% of range] | " + " | ".join(names) + " |")
         print("|---|---|" + "---|" * len(laws))
         for k, t in enumerate(first["tests"]):
             cells = []
