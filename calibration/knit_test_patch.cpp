@@ -52,7 +52,7 @@ int minimum_knit_patch(const Scene& scene) {
   return std::max(6, std::max(courses, wales) + 4);
 }
 
-Scene knit_material_test_scene(const Scene& scene, int patch, bool sliding) {
+int check_knit_patch(const Scene& scene, int patch) {
   const int min_patch = minimum_knit_patch(scene);
   const auto [tile_courses, tile_wales] = tile_size(scene);
   if (patch < min_patch || patch % tile_courses != 0 || patch % tile_wales != 0)
@@ -61,22 +61,7 @@ Scene knit_material_test_scene(const Scene& scene, int patch, bool sliding) {
                                 std::to_string(min_patch) + " (one tile inside the two clamped rings of the " +
                                 "bending tests) and a multiple of its tile (" + std::to_string(tile_courses) + " × " +
                                 std::to_string(tile_wales) + ")");
-  Scene t = scene;
-  t.knit->courses = t.knit->wales = patch;
-  t.sliding = sliding;
-  t.pose = Scene::Pose::flat;
-  t.height_m = 0.0;
-  t.pins.clear();
-  t.handles.clear();
-  t.obstacles.clear();
-  t.gravity_m_per_s2 = {0.0, 0.0, 0.0};
-  t.wind_velocity_m_per_s = {0.0, 0.0, 0.0};
-  t.air_density_kg_per_m3 = t.wind_drag_Ns_per_m3 = 0.0;
-  t.yarn_viscosity_Pa_s = 0.0;
-  TermSwitches& on = t.terms;
-  on.gravity = on.wind = on.handles = on.friction = on.inertia = false;
-  t.fem = FemSettings{};
-  return t;
+  return patch;
 }
 
 TestPoints knit_contact_points(const KnitModel& model) {

@@ -19,11 +19,10 @@ namespace wl {
 class KnitModel;
 class FemModel;
 
-// The material test scene of a knit scene: `patch` courses × `patch` wales of its
-// pattern, flat, material terms only (stretch, bending, the knit terms), no pins,
-// handles or loads; sliding frozen unless `sliding`. Throws std::invalid_argument
-// for a patch too small or one the pattern's tile does not cover whole.
-Scene knit_material_test_scene(const Scene& scene, int patch, bool sliding);
+// A knit patch of `patch` courses × `patch` wales (material_test_scene builds its scene): returns
+// `patch`, or throws std::invalid_argument for a patch too small or one the pattern's tile does
+// not cover whole.
+int check_knit_patch(const Scene& scene, int patch);
 // Smallest knit patch: the pattern's tile inside the two clamped rings, at least 6.
 int minimum_knit_patch(const Scene& scene);
 

@@ -148,20 +148,23 @@ int minimum_patch(const Scene& scene) {
 }
 
 Scene material_test_scene(const Scene& scene, int patch, bool sliding) {
-  if (scene.knit) return knit_material_test_scene(scene, patch, sliding);
-  const int min_patch = minimum_patch(scene);
-  if (patch < min_patch) {
-    std::ostringstream s;
-    s << "patch of " << patch << " crossings is too small for the "
-      << (scene.pattern.kind == Pattern::Kind::plain   ? "plain"
-          : scene.pattern.kind == Pattern::Kind::twill ? "twill"
-                                                       : "satin")
-      << " pattern: need at least " << min_patch
-      << " (one pattern repeat inside the two clamped rings of the bending tests)";
-    throw std::invalid_argument(s.str());
-  }
   Scene t = scene;
-  t.warps = t.wefts = patch;
+  if (scene.knit) {
+    t.knit->courses = t.knit->wales = check_knit_patch(scene, patch);
+  } else {
+    const int min_patch = minimum_patch(scene);
+    if (patch < min_patch) {
+      std::ostringstream s;
+      s << "patch of " << patch << " crossings is too small for the "
+        << (scene.pattern.kind == Pattern::Kind::plain   ? "plain"
+            : scene.pattern.kind == Pattern::Kind::twill ? "twill"
+                                                         : "satin")
+        << " pattern: need at least " << min_patch
+        << " (one pattern repeat inside the two clamped rings of the bending tests)";
+      throw std::invalid_argument(s.str());
+    }
+    t.warps = t.wefts = patch;
+  }
   t.sliding = sliding;
   t.pose = Scene::Pose::flat;
   t.height_m = 0.0;

@@ -72,7 +72,8 @@ bool clamps_rotation(TestKind kind);
 // Default ladder for a patch of N crossings per side at spacing L.
 std::vector<double> default_ladder(TestKind kind, int patch, double spacing_m);
 
-// The scene a material test runs on: `patch` × `patch` crossings of the
+// The scene a material test runs on (a knit scene: `patch` courses × `patch` wales of its
+// pattern, docs/calibration.md §8): `patch` × `patch` crossings of the
 // scene's fabric (pattern, yarn types and their order, R, L, contact
 // parameters), flat, with only the material terms (stretch, bending, shear,
 // parallel contact when sliding), no pins or handles. Sliding is frozen
@@ -128,10 +129,10 @@ struct TestPoints {
   Vec3 centre = Vec3::Zero();
   double span_m = 0.0;   // rest extent along U (test_map)
   double area_m2 = 0.0;  // A of R = (1/A) dW/dλ
-  // Solve at λ = 0 first and report R(0) (ResponseCurve::at_rest): a knit's rest shape.
+  // Solve at λ = 0 first and report R(0) (run_material_test's at_rest): a knit's rest shape.
   bool settle_at_rest = false;
   // The in-plane tests (stretch, shear, stretch-shear) also hold every point's z at rest: a knit's
-  // self-stressed interior, sliding, buckles out of its plane (docs/calibration.md §8). Not rotated.
+  // self-stressed interior, sliding, finds no rest otherwise (docs/calibration.md §8). Not rotated.
   bool hold_depth_in_plane = false;
 };
 

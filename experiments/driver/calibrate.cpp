@@ -169,11 +169,7 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   p.scene_text = read_text_file(c.scene_path);
   if (p.scene.knit) {
     // Knit patches (docs/calibration.md §8): what has no knit counterpart yet is refused.
-    const std::string knit = "calibrate: " + c.scene_path.string() + " is knitted ([cloth.pattern] kind = \"" +
-                             (p.scene.knit->kind == KnitPattern::Kind::stockinette ? "stockinette"
-                              : p.scene.knit->kind == KnitPattern::Kind::garter    ? "garter"
-                                                                                   : "rib2x2") +
-                             "\"): ";
+    const std::string knit = "calibrate: " + c.scene_path.string() + " is knitted ([cloth.pattern]): ";
     if (!c.validate.empty())
       throw std::invalid_argument(knit + "--validate: the continuum does not simulate knit scenes, expected none");
     if (c.border_strip)
@@ -246,8 +242,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   CalibrateSummary out;
   const int patch = p.test_scene.knit ? p.test_scene.knit->courses : p.test_scene.warps;
   if (c.progress)
-    std::fprintf(stderr, "calibrate: %zu tests on a %d x %d %s patch of %s\n", p.tests.size(), patch, patch,
-                 p.test_scene.knit ? "(courses x wales) knit" : "(crossings)", c.scene_path.string().c_str());
+    std::fprintf(stderr, "calibrate: %zu tests on a %d x %d %spatch of %s\n", p.tests.size(), patch, patch,
+                 p.test_scene.knit ? "(courses x wales) knit " : "", c.scene_path.string().c_str());
 
   // 1. Yarn level.
   auto t0 = Clock::now();
