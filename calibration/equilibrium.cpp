@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "models/core/energy_descent.h"
+
 namespace wl {
 
 EquilibriumSolver::EquilibriumSolver(Model& model, std::vector<int> prescribed) : model_(model) {
@@ -35,6 +37,33 @@ double EquilibriumSolver::held_norm(const Vec& f) const {
 }
 
 EquilibriumResult EquilibriumSolver::solve(Vec& q, const EquilibriumOptions& opt) {
+  if (!(opt.descent_tolerance > 0.0)) return newton(q, opt);
+  const Vec start = q;
+  EquilibriumResult res = newton(q, opt);
+  if (res.converged) return res;
+  // Energy descent from the same start (docs/models.md §11.8), then the stiffness
+  // at its end factorized for solve_free().
+  q = start;
+  const DescentResult d = descend_energy(model_, q, held_, opt.descent_tolerance, opt.descent_max_steps);
+  res.descent_steps = d.steps;
+  model_.evaluate(0.0, q, zero_v_, kForce | kDfdq, eval_);
+  res.residual = d.residual_N;
+  if (!(d.residual_N <= opt.descent_tolerance)) {
+    std::ostringstream why;
+    why << res.message << "; energy descent then stopped at residual " << d.residual_N << " N > "
+        << opt.descent_tolerance << " N after " << d.steps << " steps";
+    res.message = why.str();
+    return res;
+  }
+  if (neg_k_.nonZeros() != eval_.dfdq.nonZeros()) neg_k_ = eval_.dfdq;
+  std::transform(eval_.dfdq.valuePtr(), eval_.dfdq.valuePtr() + eval_.dfdq.nonZeros(), neg_k_.valuePtr(),
+                 [](double k) { return -k; });
+  res.converged = true;  // a minimum; only solve_free() needs the factorization
+  res.message = solver_->factorize(neg_k_) ? "" : "singular stiffness at the energy minimum: no solve_free()";
+  return res;
+}
+
+EquilibriumResult EquilibriumSolver::newton(Vec& q, const EquilibriumOptions& opt) {
   EquilibriumResult res;
   Vec dx, trial;
   model_.evaluate(0.0, q, zero_v_, kForce | kDfdq, eval_);

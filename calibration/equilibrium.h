@@ -24,6 +24,11 @@ struct EquilibriumOptions {
   double rtol = 1e-10;
   double atol = 1e-13;  // [N]
   int max_backtracks = 20;
+  // > 0: where Newton fails, energy descent (models/core/energy_descent.h) from the
+  // same start to ‖f_f‖∞ ≤ descent_tolerance [N] (a knit's free edges or self-stressed
+  // rest shape: indefinite stiffness, docs/models.md §11.8); 0: Newton alone.
+  double descent_tolerance = 0.0;
+  int descent_max_steps = 4000;
 };
 
 struct EquilibriumResult {
@@ -31,6 +36,7 @@ struct EquilibriumResult {
   int iterations = 0;
   double residual = 0.0;  // ‖f_f‖∞ at the returned state [N]
   std::string message;    // why it did not converge
+  int descent_steps = 0;  // energy descent steps after a failed Newton solve (descent_tolerance > 0)
 };
 
 class EquilibriumSolver {
@@ -40,6 +46,9 @@ class EquilibriumSolver {
 
   // Solves in place: q holds the prescribed values and the initial guess of the free DoFs.
   // After a converged solve the stiffness at q is factorized (solve_free()).
+  // With options.descent_tolerance > 0 a failed Newton solve is followed by energy
+  // descent from the same start; `iterations` then counts Newton's, `descent_steps`
+  // the descent's, and a failure's message names both.
   EquilibriumResult solve(Vec& q, const EquilibriumOptions& options = {});
 
   // Makes the next solve() what it is on a new solver for the same model and
@@ -53,6 +62,7 @@ class EquilibriumSolver {
   void solve_free(const Vec& b, Vec& x) const;
 
  private:
+  EquilibriumResult newton(Vec& q, const EquilibriumOptions& options);
   double free_norm(const Vec& f) const;
   double held_norm(const Vec& f) const;
 

@@ -5,16 +5,10 @@
 namespace wl {
 
 FemTestPatch::FemTestPatch(const Scene& test_scene, const FemMaterial& material, const TestSpec& test)
-    : model_(std::make_unique<FemModel>(test_scene, make_fem_mesh(test_scene), material)),
+    : model_(std::make_unique<FemModel>(test_scene, material_test_mesh(test_scene), material)),
       test_(test),
-      patch_(test_scene.warps),
-      spacing_m_(test_scene.spacing_m),
-      x_of_(crossing_dofs(
-          [&](int i, int j) {
-            return 3 * model_->vertex_of_node({i, j});
-          },
-          patch_)),
-      eq_(*model_, held_dofs(x_of_, test, patch_)) {}
+      points_(continuum_test_points(test_scene, *model_)),
+      eq_(*model_, held_dofs(points_, test)) {}
 
 FemTestPatch::~FemTestPatch() = default;
 
@@ -22,7 +16,7 @@ ResponseCurve FemTestPatch::run(const FemMaterial& material, const std::vector<s
                                 const EquilibriumOptions& options) {
   model_->set_material(material);
   eq_.restart();
-  return run_material_test(*model_, eq_, x_of_, test_, patch_, spacing_m_, keys, options);
+  return run_material_test(*model_, eq_, points_, test_, keys, options);
 }
 
 ResponseCurve FemTestPatches::run(const FemMaterial& material, const TestSpec& test,

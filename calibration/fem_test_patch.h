@@ -33,9 +33,7 @@ class FemTestPatch {
  private:
   std::unique_ptr<FemModel> model_;
   TestSpec test_;
-  int patch_;
-  double spacing_m_;
-  std::vector<int> x_of_;
+  TestPoints points_;
   EquilibriumSolver eq_;
 };
 

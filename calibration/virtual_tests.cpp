@@ -10,7 +10,9 @@
 
 #include <Eigen/Geometry>
 
+#include "calibration/knit_test_patch.h"
 #include "models/fem/fem_model.h"
+#include "models/knit/knit_model.h"
 #include "models/yarn/yarn_model.h"
 
 namespace wl {
@@ -144,22 +146,28 @@ std::vector<double> default_ladder(TestKind kind, int patch, double L) {
   return l;
 }
 
-int minimum_patch(const Scene& scene) { return std::max(6, pattern_repeat(scene.pattern) + 4); }
+int minimum_patch(const Scene& scene) {
+  return scene.knit ? minimum_knit_patch(scene) : std::max(6, pattern_repeat(scene.pattern) + 4);
+}
 
 Scene material_test_scene(const Scene& scene, int patch, bool sliding) {
-  const int min_patch = minimum_patch(scene);
-  if (patch < min_patch) {
-    std::ostringstream s;
-    s << "patch of " << patch << " crossings is too small for the "
-      << (scene.pattern.kind == Pattern::Kind::plain   ? "plain"
-          : scene.pattern.kind == Pattern::Kind::twill ? "twill"
-                                                       : "satin")
-      << " pattern: need at least " << min_patch
-      << " (one pattern repeat inside the two clamped rings of the bending tests)";
-    throw std::invalid_argument(s.str());
-  }
   Scene t = scene;
-  t.warps = t.wefts = patch;
+  if (scene.knit) {
+    t.knit->courses = t.knit->wales = check_knit_patch(scene, patch);
+  } else {
+    const int min_patch = minimum_patch(scene);
+    if (patch < min_patch) {
+      std::ostringstream s;
+      s << "patch of " << patch << " crossings is too small for the "
+        << (scene.pattern.kind == Pattern::Kind::plain   ? "plain"
+            : scene.pattern.kind == Pattern::Kind::twill ? "twill"
+                                                         : "satin")
+        << " pattern: need at least " << min_patch
+        << " (one pattern repeat inside the two clamped rings of the bending tests)";
+      throw std::invalid_argument(s.str());
+    }
+    t.warps = t.wefts = patch;
+  }
   t.sliding = sliding;
   t.pose = Scene::Pose::flat;
   t.height_m = 0.0;
@@ -184,13 +192,19 @@ void diagonal_axes(TestKind kind, Vec2* b, Vec2* a) {
   *a = Vec2(-b->y(), b->x());
 }
 
-// The map of crossing (i, j) under load λ, about the patch centre and unrotated: its
-// position x and its derivative dx = ∂x/∂λ.
-void local_map(const PatchMap& m, int i, int j, double lambda, Vec3* x, Vec3* dx) {
-  const double c = 0.5 * (m.patch - 1) * m.spacing_m;
-  const double u = i * m.spacing_m - c, v = j * m.spacing_m - c;
+// The map of the point at rest offset (u, v, z) under load λ, about the patch centre and
+// unrotated: its position x and its derivative dx = ∂x/∂λ.
+void local_map(TestKind kind, double u, double v, double z, double span, double lambda, Vec3* x, Vec3* dx) {
   double a, r, da, dr;
-  switch (m.kind) {
+  // The bending maps carry a depth z along the cylinder's normal n(θ) = (−sin θ·b, cos θ),
+  // θ the turning at the point, b the bending direction in the plane: x += z·n, dx += z·n'(θ)·dθ/dλ.
+  auto along_normal = [&](double theta, double dtheta, const Vec2& b) {
+    if (z == 0.0) return;
+    const double sn = std::sin(theta), cs = std::cos(theta);
+    *x += z * Vec3(-sn * b.x(), -sn * b.y(), cs);
+    *dx += z * dtheta * Vec3(-cs * b.x(), -cs * b.y(), -sn);
+  };
+  switch (kind) {
     case TestKind::uniaxial_warp:
       *x = Vec3((1 + lambda) * u, v, 0);
       *dx = Vec3(u, 0, 0);
@@ -214,22 +228,26 @@ void local_map(const PatchMap& m, int i, int j, double lambda, Vec3* x, Vec3* dx
       arc(u, lambda, &a, &r, &da, &dr);
       *x = Vec3(a, v, r);
       *dx = Vec3(da, 0, dr);
-      break;
+      along_normal(lambda * u, u, Vec2(1, 0));
+      return;
     case TestKind::bending_weft:
       arc(v, lambda, &a, &r, &da, &dr);
       *x = Vec3(u, a, r);
       *dx = Vec3(0, da, dr);
-      break;
+      along_normal(lambda * v, v, Vec2(0, 1));
+      return;
     case TestKind::bending_diagonal:
     case TestKind::bending_antidiagonal: {
       // the cylinder of curvature λ bending along b, its axis along a
       Vec2 b, ax;
-      diagonal_axes(m.kind, &b, &ax);
-      arc(b.dot(Vec2(u, v)), lambda, &a, &r, &da, &dr);
+      diagonal_axes(kind, &b, &ax);
+      const double s = b.dot(Vec2(u, v));
+      arc(s, lambda, &a, &r, &da, &dr);
       const Vec2 p = a * b + ax.dot(Vec2(u, v)) * ax;
       *x = Vec3(p.x(), p.y(), r);
       *dx = Vec3(da * b.x(), da * b.y(), dr);
-      break;
+      along_normal(lambda * s, s, b);
+      return;
     }
     case TestKind::stretch_shear: {
       // warp strain λ, then the picture frame at γ = kShearPerStrain·λ
@@ -240,74 +258,118 @@ void local_map(const PatchMap& m, int i, int j, double lambda, Vec3* x, Vec3* dx
       break;
     }
     case TestKind::stretch_bending: {
-      // warp strain λ along the arc of the cylinder of curvature κ = cλ, c = kTurningPerStrain/((N−1)L):
+      // warp strain λ along the arc of the cylinder of curvature κ = cλ, c = kTurningPerStrain/span:
       // x = arc(s, κ) with s = (1+λ)u, dx/dλ = ∂x/∂s·u + ∂x/∂κ·c, ∂(along, rise)/∂s = (cos κs, sin κs)
-      const double k_per = kTurningPerStrain / ((m.patch - 1) * m.spacing_m), kappa = k_per * lambda;
+      const double k_per = kTurningPerStrain / span, kappa = k_per * lambda;
       const double s = (1 + lambda) * u;
       arc(s, kappa, &a, &r, &da, &dr);
       *x = Vec3(a, v, r);
       *dx = Vec3(std::cos(kappa * s) * u + da * k_per, 0, std::sin(kappa * s) * u + dr * k_per);
-      break;
+      along_normal(kappa * s, k_per * s + kappa * u, Vec2(1, 0));
+      return;
     }
   }
+  if (z != 0.0) x->z() += z;  // the in-plane maps keep a point's depth
 }
 
 }  // namespace
 
+void test_map(TestKind kind, const Vec3& r, double span_m, double lambda, bool rotated, Vec3* x, Vec3* dx) {
+  local_map(kind, r.x(), r.y(), r.z(), span_m, lambda, x, dx);
+  if (rotated) *x = test_rotation() * *x, *dx = test_rotation() * *dx;
+}
+
 Vec3 PatchMap::position(int i, int j, double lambda) const {
-  Vec3 x, dx;
-  local_map(*this, i, j, lambda, &x, &dx);
-  if (rotated) x = test_rotation() * x;
   const double c = 0.5 * (patch - 1) * spacing_m;
+  Vec3 x, dx;
+  test_map(kind, Vec3(i * spacing_m - c, j * spacing_m - c, 0), (patch - 1) * spacing_m, lambda, rotated, &x, &dx);
   return x + Vec3(c, c, height_m);
 }
 
 Vec3 PatchMap::derivative(int i, int j, double lambda) const {
+  const double c = 0.5 * (patch - 1) * spacing_m;
   Vec3 x, dx;
-  local_map(*this, i, j, lambda, &x, &dx);
-  return rotated ? Vec3(test_rotation() * dx) : dx;
+  test_map(kind, Vec3(i * spacing_m - c, j * spacing_m - c, 0), (patch - 1) * spacing_m, lambda, rotated, &x, &dx);
+  return dx;
 }
 
-std::vector<int> crossing_dofs(const std::function<int(int, int)>& x_dof, int patch) {
-  std::vector<int> x(static_cast<size_t>(patch) * patch);
+TestPoints crossing_points(const std::function<int(int, int)>& x_dof, int patch, double L) {
+  TestPoints p;
+  const double c = 0.5 * (patch - 1) * L;
   for (int j = 0; j < patch; ++j)
-    for (int i = 0; i < patch; ++i) x[i + patch * j] = x_dof(i, j);
-  return x;
+    for (int i = 0; i < patch; ++i) {
+      p.x_of.push_back(x_dof(i, j));
+      p.rest.emplace_back(i * L - c, j * L - c, 0.0);
+      p.depth.push_back(std::min({i, j, patch - 1 - i, patch - 1 - j}));
+    }
+  p.centre = Vec3(c, c, 0.0);
+  p.span_m = (patch - 1) * L;
+  p.area_m2 = std::pow((patch - 1) * L, 2);
+  return p;
 }
 
-// Held crossings: the outer ring; for bending the next ring too, so that the
+namespace {
+
+// Held points: the outer ring; for bending the next ring too, so that the
 // edges are clamped in rotation as well (a ring held in position only lets the
 // rows relax like pinned beams, away from the cylinder).
-std::vector<int> held_crossings(const TestSpec& test, int patch) {
+std::vector<int> held_points(const TestPoints& points, const TestSpec& test) {
   const int depth = clamps_rotation(test.kind) ? 2 : 1;
   std::vector<int> ring;
-  for (int j = 0; j < patch; ++j)
-    for (int i = 0; i < patch; ++i)
-      if (std::min({i, j, patch - 1 - i, patch - 1 - j}) < depth) ring.push_back(i + patch * j);
+  for (size_t n = 0; n < points.x_of.size(); ++n)
+    if (points.depth[n] < depth) ring.push_back(static_cast<int>(n));
   return ring;
 }
 
-std::vector<int> held_dofs(const std::vector<int>& x_of, const TestSpec& test, int patch) {
+}  // namespace
+
+bool in_plane(TestKind kind) {
+  return kind == TestKind::uniaxial_warp || kind == TestKind::uniaxial_weft || kind == TestKind::biaxial ||
+         kind == TestKind::shear || kind == TestKind::stretch_shear;
+}
+
+std::vector<int> held_dofs(const TestPoints& points, const TestSpec& test) {
   std::vector<int> prescribed;
-  for (int n : held_crossings(test, patch))
-    for (int c = 0; c < 3; ++c) prescribed.push_back(x_of[n] + c);
+  for (int n : held_points(points, test)) {
+    for (int c = 0; c < 3; ++c) prescribed.push_back(points.x_of[n] + c);
+    if (!points.held_with.empty())
+      prescribed.insert(prescribed.end(), points.held_with[n].begin(), points.held_with[n].end());
+  }
+  if (points.hold_depth_in_plane && in_plane(test.kind)) {
+    if (test.rotated)
+      throw std::invalid_argument(test_name(test) +
+                                  ": an in-plane test that holds every point's z "
+                                  "(a knit patch) is not offered rotated");
+    for (size_t n = 0; n < points.x_of.size(); ++n)
+      if (points.depth[n] >= (clamps_rotation(test.kind) ? 2 : 1)) prescribed.push_back(points.x_of[n] + 2);
+  }
   return prescribed;
 }
 
 ResponseCurve run_material_test(Model& model, const std::function<int(int, int)>& x_dof, const TestSpec& test,
                                 int patch, double L, const std::vector<std::string>& keys,
                                 const EquilibriumOptions& options) {
-  const std::vector<int> x_of = crossing_dofs(x_dof, patch);
-  EquilibriumSolver eq(model, held_dofs(x_of, test, patch));
-  return run_material_test(model, eq, x_of, test, patch, L, keys, options);
+  const TestPoints points = crossing_points(x_dof, patch, L);
+  EquilibriumSolver eq(model, held_dofs(points, test));
+  return run_material_test(model, eq, points, test, keys, options);
 }
 
-ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const std::vector<int>& x_of, const TestSpec& test,
-                                int patch, double L, const std::vector<std::string>& keys,
-                                const EquilibriumOptions& options) {
-  const PatchMap map{test.kind, patch, L, 0.0, test.rotated};
-  const std::vector<int> ring = held_crossings(test, patch);
-  const double area = std::pow((patch - 1) * L, 2);
+ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const TestPoints& points, const TestSpec& test,
+                                const std::vector<std::string>& keys, const EquilibriumOptions& options,
+                                ResponsePoint* at_rest) {
+  const std::vector<int> ring = held_points(points, test);
+  const std::vector<int>& x_of = points.x_of;
+  const size_t count = x_of.size();
+  auto position = [&](size_t n, double lambda) {
+    Vec3 x, dx;
+    test_map(test.kind, points.rest[n], points.span_m, lambda, test.rotated, &x, &dx);
+    return Vec3(x + points.centre);
+  };
+  auto derivative = [&](size_t n, double lambda) {
+    Vec3 x, dx;
+    test_map(test.kind, points.rest[n], points.span_m, lambda, test.rotated, &x, &dx);
+    return dx;
+  };
 
   ResponseCurve curve{test.kind, {}, true, "", {}};
   Vec q = model.initial_q();
@@ -316,19 +378,30 @@ ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const std::
   if (test.rotated) {
     // Turn the rest patch about its centre first; the ladder's increments are turned alike.
     const Mat3 Q = test_rotation();
-    const Vec3 c0(0.5 * (patch - 1) * L, 0.5 * (patch - 1) * L, map.height_m);
-    for (int j = 0; j < patch; ++j)
-      for (int i = 0; i < patch; ++i) {
-        auto x = q.segment<3>(x_of[i + patch * j]);
-        x = c0 + Q * (Vec3(x) - c0);
-      }
+    for (size_t n = 0; n < count; ++n) {
+      auto x = q.segment<3>(x_of[n]);
+      x = points.centre + Q * (Vec3(x) - points.centre);
+    }
+  }
+  // R = −(1/A) Σ_b f_b·∂x_b/∂λ over the ring.
+  auto response_of = [&](const Vec& f, double lambda) {
+    double w = 0.0;
+    for (int n : ring) w -= f.segment<3>(x_of[n]).dot(derivative(n, lambda));
+    return w / points.area_m2;
+  };
+  if (points.settle_at_rest) {
+    const EquilibriumResult r = eq.solve(q, options);
+    if (!r.converged) {
+      curve.complete = false;
+      curve.message = test_name(test) + " at rest (λ = 0): " + r.message;
+      return curve;
+    }
+    if (at_rest) *at_rest = {0.0, response_of(eq.evaluation().force, 0.0), r.iterations + r.descent_steps};
   }
   double previous = 0.0;
   for (double lambda : test.ladder) {
-    // Every crossing moves with the map (the ring exactly, the interior as a first guess).
-    for (int j = 0; j < patch; ++j)
-      for (int i = 0; i < patch; ++i)
-        q.segment<3>(x_of[i + patch * j]) += map.position(i, j, lambda) - map.position(i, j, previous);
+    // Every point moves with the map (the ring exactly, the interior as a first guess).
+    for (size_t n = 0; n < count; ++n) q.segment<3>(x_of[n]) += position(n, lambda) - position(n, previous);
     previous = lambda;
     const EquilibriumResult r = eq.solve(q, options);
     if (!r.converged) {
@@ -338,30 +411,30 @@ ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const std::
       curve.message = m.str();
       break;
     }
-    // R = −(1/A) Σ_b f_b·∂x_b/∂λ over the ring.
-    auto response_of = [&](const Vec& f) {
-      double w = 0.0;
-      for (int n : ring) {
-        const int i = n % patch, j = n / patch;
-        w -= f.segment<3>(x_of[n]).dot(map.derivative(i, j, lambda));
-      }
-      return w / area;
-    };
     const Evaluation& ev = eq.evaluation();
-    curve.points.push_back({lambda, response_of(ev.force), r.iterations});
+    curve.points.push_back({lambda, response_of(ev.force, lambda), r.iterations + r.descent_steps});
     std::vector<double> sens;
     for (const std::string& key : keys) {
       // df/dp = K·dq/dp + ∂f/∂p, with dq_f/dp = (−K_ff)⁻¹ ∂f_f/∂p (dq = 0 on the ring).
       model.force_parameter_derivative(key, 0.0, q, zero_v, dfdp);
       eq.solve_free(dfdp, s);
-      sens.push_back(response_of(ev.dfdq * s + dfdp));
+      sens.push_back(response_of(ev.dfdq * s + dfdp, lambda));
     }
     curve.sensitivities.push_back(std::move(sens));
   }
   return curve;
 }
 
-ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const EquilibriumOptions& options) {
+ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const EquilibriumOptions& options,
+                            ResponsePoint* at_rest) {
+  if (test_scene.knit) {
+    KnitModel model(test_scene);
+    const TestPoints points = knit_contact_points(model);
+    EquilibriumSolver eq(model, held_dofs(points, test));
+    EquilibriumOptions o = options;
+    if (!(o.descent_tolerance > 0)) o.descent_tolerance = knit_equilibrium_options(test_scene).descent_tolerance;
+    return run_material_test(model, eq, points, test, {}, o, at_rest);
+  }
   YarnModel model(test_scene);
   const WovenGrid& g = model.grid();
   return run_material_test(
@@ -370,11 +443,13 @@ ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const
 }
 
 std::vector<ResponseCurve> run_yarn_tests(const Scene& test_scene, const std::vector<TestSpec>& tests, int threads,
-                                          const std::function<void(int, const ResponseCurve&)>& done) {
+                                          const std::function<void(int, const ResponseCurve&)>& done,
+                                          std::vector<ResponsePoint>* at_rest) {
   std::vector<ResponseCurve> curves(tests.size());
+  if (at_rest) at_rest->assign(tests.size(), ResponsePoint{});
   std::mutex report;
   run_starts(static_cast<int>(tests.size()), threads, [&](int k) {
-    curves[k] = run_yarn_test(test_scene, tests[k]);
+    curves[k] = run_yarn_test(test_scene, tests[k], {}, at_rest ? &(*at_rest)[k] : nullptr);
     if (!done) return;
     std::lock_guard<std::mutex> lock(report);
     done(k, curves[k]);
@@ -382,15 +457,25 @@ std::vector<ResponseCurve> run_yarn_tests(const Scene& test_scene, const std::ve
   return curves;
 }
 
-ResponseCurve run_fem_test(const Scene& test_scene, const FemMaterial& material, const TestSpec& test,
-                           const std::vector<std::string>& keys, const EquilibriumOptions& options) {
-  FemModel model(test_scene, make_fem_mesh(test_scene), material);
-  return run_material_test(
-      model,
+FemMesh material_test_mesh(const Scene& test_scene) {
+  return test_scene.knit ? knit_contact_mesh(test_scene) : make_fem_mesh(test_scene);
+}
+
+TestPoints continuum_test_points(const Scene& test_scene, const FemModel& model) {
+  if (test_scene.knit) return knit_continuum_points(test_scene);
+  return crossing_points(
       [&](int i, int j) {
         return 3 * model.vertex_of_node({i, j});
       },
-      test, test_scene.warps, test_scene.spacing_m, keys, options);
+      test_scene.warps, test_scene.spacing_m);
+}
+
+ResponseCurve run_fem_test(const Scene& test_scene, const FemMaterial& material, const TestSpec& test,
+                           const std::vector<std::string>& keys, const EquilibriumOptions& options) {
+  FemModel model(test_scene, material_test_mesh(test_scene), material);
+  const TestPoints points = continuum_test_points(test_scene, model);
+  EquilibriumSolver eq(model, held_dofs(points, test));
+  return run_material_test(model, eq, points, test, keys, options);
 }
 
 }  // namespace wl

@@ -188,11 +188,13 @@ int main(int argc, char** argv) {
       "Fit the continuum's [fem] parameters to virtual material tests of the scene's fabric at yarn "
       "level (Ceres), validate on motion; writes params.toml, calibration.json, curves.csv, validation.csv");
   calibrate->add_option("scene", cal_scene, "Scene file (TOML) whose fabric is calibrated")->required();
-  calibrate->add_option("--tests", cal_tests,
-                        "Comma-separated tests (default the first six): " + joined(wl::test_names()) +
-                            "; each also as rotated-NAME (the patch turned rigidly)");
+  calibrate->add_option(
+      "--tests", cal_tests,
+      "Comma-separated tests (default the first six): " + joined(wl::test_names()) +
+          "; each also as rotated-NAME (the patch turned rigidly); knits: warp = course, weft = wale");
   calibrate->add_option("--patch", cal.patch,
-                        "Crossings per side of the test patch (default: the scene's, at most 33)");
+                        "Crossings per side of the test patch, knits: courses = wales (default: the scene's, at most "
+                        "33)");
   calibrate->add_option(
       "--ladder", cal_ladders,
       "TEST=λ1,λ2,... load ladder of a test (strain, shear angle [rad] or curvature [1/m]); repeatable");

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "calibration/fem_test_patch.h"
+#include "calibration/knit_test_patch.h"
 #include "experiments/driver/experiment_meta.h"
 #include "experiments/driver/recorded_run.h"
 #include "experiments/output/atomic_file.h"
@@ -109,6 +110,36 @@ Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
 
 namespace {
 
+double curve_range(const std::vector<double>& r) {
+  double m = 0.0;
+  for (double x : r) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// A knit's first guess (docs/calibration.md §8): nothing derives a knit's membrane stiffness
+// from its yarn, so each stiffness a test informs starts at that test's secant at its first
+// load, R(λ₁)/λ₁ (the biaxial test's shared between warp and weft when no uniaxial test
+// informs them); the rest is default_fem_material's.
+FemMaterial knit_first_guess(const Scene& test_scene, const std::vector<FitCurve>& curves) {
+  FemMaterial m = default_fem_material(test_scene);
+  auto secant = [&](TestKind kind) {
+    for (const FitCurve& c : curves)
+      if (c.test.kind == kind && !c.test.ladder.empty() && c.target[0] > 0) return c.target[0] / c.test.ladder[0];
+    return 0.0;
+  };
+  auto set = [](double& key, double value) {
+    if (value > 0) key = value;
+  };
+  set(m.warp_stretch_N_per_m, 0.5 * secant(TestKind::biaxial));
+  set(m.weft_stretch_N_per_m, 0.5 * secant(TestKind::biaxial));
+  set(m.warp_stretch_N_per_m, secant(TestKind::uniaxial_warp));
+  set(m.weft_stretch_N_per_m, secant(TestKind::uniaxial_weft));
+  set(m.shear_N_per_m, secant(TestKind::shear));
+  set(m.warp_bending_N_m, secant(TestKind::bending_warp));
+  set(m.weft_bending_N_m, secant(TestKind::bending_weft));
+  return m;
+}
+
 double mean(const std::vector<double>& x) {
   return x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / x.size();
 }
@@ -137,7 +168,20 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   CalibratePlan p;
   p.scene = load_scene(c.scene_path.string());
   p.scene_text = read_text_file(c.scene_path);
-  const int size = std::min(p.scene.warps, p.scene.wefts);
+  if (p.scene.knit) {
+    // Knit patches (docs/calibration.md §8): what has no knit counterpart yet is refused.
+    const std::string knit = "calibrate: " + c.scene_path.string() + " is knitted ([cloth.pattern]): ";
+    if (!c.validate.empty())
+      throw std::invalid_argument(knit + "--validate: the continuum does not simulate knit scenes, expected none");
+    if (c.border_strip)
+      throw std::invalid_argument(knit + "--border-strip: a woven border's half spacing, expected without it");
+    if (c.grid_line_bending)
+      throw std::invalid_argument(knit +
+                                  "--grid-line-bending: its line widths assume one crossing spacing, the contact grid "
+                                  "has two (W/2, C); expected hinge bending");
+  }
+  const int size =
+      p.scene.knit ? std::min(p.scene.knit->courses, p.scene.knit->wales) : std::min(p.scene.warps, p.scene.wefts);
   const int patch = c.patch > 0 ? c.patch : std::max(std::min(size, 33), minimum_patch(p.scene));
   p.test_scene = material_test_scene(p.scene, patch, c.sliding);  // too small: invalid_argument
   p.test_scene.fem.border_strip = c.border_strip;
@@ -146,9 +190,13 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   for (const std::string& name : names) {
     TestSpec t = test_spec(name);  // unknown: invalid_argument
     const TestKind kind = t.kind;
+    if (p.scene.knit && t.rotated && in_plane(kind))
+      throw std::invalid_argument("--tests " + name + ": " + c.scene_path.string() +
+                                  " is knitted, and its in-plane tests hold every node's z (docs/calibration.md §8): "
+                                  "expected it unrotated");
     for (const TestSpec& other : p.tests)
       if (test_name(other) == test_name(t)) throw std::invalid_argument("--tests: '" + name + "' is listed twice");
-    t.ladder = default_ladder(kind, patch, p.scene.spacing_m);
+    t.ladder = p.scene.knit ? default_knit_ladder(kind, p.test_scene) : default_ladder(kind, patch, p.scene.spacing_m);
     if (auto it = c.ladders.find(name); it != c.ladders.end()) t.ladder = it->second;
     if (t.ladder.size() < 2) throw std::invalid_argument("--ladder " + name + ": need at least 2 loads");
     for (size_t i = 0; i < t.ladder.size(); ++i)
@@ -193,37 +241,48 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
 
 CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& p) {
   CalibrateSummary out;
-  const int patch = p.test_scene.warps;
+  const int patch = p.test_scene.knit ? p.test_scene.knit->courses : p.test_scene.warps;
   if (c.progress)
-    std::fprintf(stderr, "calibrate: %zu tests on a %d x %d patch of %s\n", p.tests.size(), patch, patch,
-                 c.scene_path.string().c_str());
+    std::fprintf(stderr, "calibrate: %zu tests on a %d x %d %spatch of %s\n", p.tests.size(), patch, patch,
+                 p.test_scene.knit ? "(courses x wales) knit " : "", c.scene_path.string().c_str());
 
   // 1. Yarn level.
   auto t0 = Clock::now();
   // The tests run at once, one per hardware thread as the fit's starts; the curves do not depend on it.
   const int threads = c.fit.threads > 0 ? c.fit.threads : static_cast<int>(std::thread::hardware_concurrency());
-  const std::vector<ResponseCurve> yarn_curves =
-      run_yarn_tests(p.test_scene, p.tests, threads, [&](int k, const ResponseCurve& r) {
+  std::vector<ResponsePoint> rests;
+  const std::vector<ResponseCurve> yarn_curves = run_yarn_tests(
+      p.test_scene, p.tests, threads,
+      [&](int k, const ResponseCurve& r) {
         if (c.progress)
           std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(p.tests[k]).c_str(), r.points.size(),
                        p.tests[k].ladder.size(), r.complete ? "" : ", stopped:", r.message.c_str());
-      });
+      },
+      &rests);
   std::vector<FitCurve> curves;
+  std::vector<double> at_rest;  // R(0) per test: knits (docs/calibration.md §8)
   for (size_t k = 0; k < p.tests.size(); ++k) {
     const TestSpec& t = p.tests[k];
     const ResponseCurve& r = yarn_curves[k];
+    const ResponsePoint& rest = rests[k];  // R(0) of a knit
     if (r.points.size() < 2) throw std::runtime_error("yarn-level test did not converge: " + r.message);
     FitCurve fc{{t.kind, {}, t.rotated}, {}};
+    // A knit's target is the change from its self-stressed rest shape, R(λ) − R(0)
+    // (docs/calibration.md §8); a woven patch is stress-free at rest (R(0) is not solved for).
     for (const ResponsePoint& pt : r.points) {
       fc.test.ladder.push_back(pt.load);
-      fc.target.push_back(pt.response);
+      fc.target.push_back(p.scene.knit ? pt.response - rest.response : pt.response);
     }
+    if (p.scene.knit && c.progress)
+      std::fprintf(stderr, "       %-14s R(0) = %.4g %s, %.3g %% of the curve's range\n", "", rest.response,
+                   response_unit(t.kind).c_str(), 100 * std::abs(rest.response) / curve_range(fc.target));
+    at_rest.push_back(rest.response);
     curves.push_back(fc);
   }
   out.yarn_tests_s = seconds_since(t0);
 
   // 2. Continuum tests at the first guess (also the time of one evaluation of every test).
-  FemMaterial guess = fem_material(p.scene);
+  FemMaterial guess = p.scene.knit ? knit_first_guess(p.test_scene, curves) : fem_material(p.scene);
   if (c.diagonal_bending && guess.diagonal_bending_N_m <= 0)  // start where the law is off: the mean
     guess.diagonal_bending_N_m = 0.5 * (guess.warp_bending_N_m + guess.weft_bending_N_m);
   if (!c.shear_knots_rad.empty()) guess.shear_knots_rad = c.shear_knots_rad;
@@ -245,7 +304,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   out.fit = fit_continuum(curves, guess, continuum, fo);
   out.fit_s = seconds_since(t0);
   FemMaterial calibrated = out.fit.material;
-  calibrated.areal_density_kg_per_m2 = matched_areal_density(p.scene);
+  calibrated.areal_density_kg_per_m2 = p.scene.knit ? knit_areal_density(p.test_scene) : matched_areal_density(p.scene);
   if (c.progress) {
     std::fprintf(stderr, "  fit: %s (cost %.4g, %d iterations, %d curve evaluations, %.1f s)\n",
                  out.fit.converged ? "converged" : "NOT converged", out.fit.cost, out.fit.iterations,
@@ -365,13 +424,15 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
       {{"source_scene", c.scene_path.string()},
        {"source_scene_hash", text_hash(p.scene_text)},
        {"git_revision", git_revision()},
-       {"patch", std::to_string(patch) + " x " + std::to_string(patch)},
+       {"patch", std::to_string(patch) + " x " + std::to_string(patch) +
+                     (p.scene.knit ? " courses x wales (knit; the continuum does not simulate knit scenes)" : "")},
        {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene" : "false"},
        {"grid_line_bending",
         c.grid_line_bending ? "fitted with [fem] grid_line_bending = true: set it in the scene" : "false"},
        {"shear_law", shear_law_note(calibrated)},
        {"residual_rms_relative", rms.str()},
-       {"areal_density", "total yarn mass of the scene over the crossing grid's area"},
+       {"areal_density", p.scene.knit ? "yarn mass of the knit test patch over its contact grid's area"
+                                      : "total yarn mass of the scene over the crossing grid's area"},
        {"created", utc_now()}});
 
   // calibration.json
@@ -379,6 +440,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
   j.set("scene_hash", text_hash(p.scene_text));
   j.set("patch", patch);
+  j.set("cloth", p.scene.knit ? "knit" : "woven");
   j.set("sliding", c.sliding);
   j.set("border_strip", c.border_strip);
   j.set("grid_line_bending", c.grid_line_bending);
@@ -421,6 +483,10 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     e.set("test", test_name(curves[i].test));
     e.set("points", static_cast<int>(curves[i].target.size()));
     e.set("residual_rms_relative", out.fit.relative_rms[i]);
+    if (p.scene.knit) {  // R(0), and relative to the range of the fit's target R − R(0)
+      e.set("response_at_rest", at_rest[i]);
+      e.set("response_at_rest_relative", at_rest[i] / curve_range(curves[i].target));
+    }
     e.set("load_unit", load_unit(curves[i].test.kind));
     e.set("response_unit", response_unit(curves[i].test.kind));
     tests.push(std::move(e));

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,8 +10,8 @@
 #include "experiments/output/atomic_file.h"
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
-#include "models/core/energy_descent.h"
 #include "models/knit/knit_model.h"
+#include "models/knit/knit_rest_shape.h"
 #include "models/model_factory.h"
 #include "models/yarn/yarn_model.h"
 
@@ -69,11 +68,7 @@ Grips woven_grips(const YarnModel& m, char direction) {
 double yarn_length(const Model& model, const Vec& q) {
   if (const auto* k = dynamic_cast<const KnitModel*>(&model)) {
     double total = 0.0;
-    for (const KnitYarn& y : k->graph().yarns()) {
-      const KnitVisit &first = y.visits.front(), &last = y.visits.back();
-      total += k->coordinate(q, k->graph().node(last.node).coord[last.slot]) -
-               k->coordinate(q, k->graph().node(first.node).coord[first.slot]);
-    }
+    for (int y = 0; y < static_cast<int>(k->graph().yarns().size()); ++y) total += k->yarn_length(q, y);
     return total;
   }
   const WovenGrid& g = dynamic_cast<const YarnModel&>(model).grid();
@@ -141,10 +136,10 @@ PullResult run_pull(const Scene& scene_in, const PullConfig& config) {
   EquilibriumSolver eq(*model, held);
   Evaluation eval;
   allocate_evaluation(*model, eval);
-  double ks = 0.0;  // the stiffest yarn's k_s sets the force tolerance of energy descent
-  for (const auto& [name, y] : scene.yarn_types)
-    ks = std::max(ks, y.stretch_modulus_Pa * std::numbers::pi * scene.radius_m * scene.radius_m);
-  const double tol = 1e-9 * ks;
+  EquilibriumOptions options;
+  // Newton on the residual (docs/calibration.md §1); where its line search fails (a knit's free
+  // edges: indefinite stiffness), energy descent to 10⁻⁹ of the stiffest yarn's k_s.
+  options.descent_tolerance = kKnitRestTolerance * stiffest_yarn_N(scene);
   Vec q = q0;
   double previous = 0.0;
   std::vector<double> ladder{0.0};
@@ -155,24 +150,14 @@ PullResult run_pull(const Scene& scene_in, const PullConfig& config) {
     for (int x : grips.all_x) q[x + axis] = base + (q[x + axis] - base) * scale;
     for (int x : grips.near_x) q[x + axis] = q0[x + axis];
     for (int x : grips.far_x) q[x + axis] = q0[x + axis] + lambda * out.grip_distance_m;
-    // Newton on the residual (docs/calibration.md §1); where its line search
-    // fails (a knit's free edges: indefinite stiffness), energy descent.
-    const Vec start = q;
-    const EquilibriumResult r = eq.solve(q);
-    PullPoint point{lambda, 0.0, r.residual, r.iterations};
+    const EquilibriumResult r = eq.solve(q, options);
+    PullPoint point{lambda, 0.0, r.residual, r.iterations + r.descent_steps};
     if (!r.converged) {
-      q = start;
-      const DescentResult d = descend_energy(*model, q, held, tol, 4000);
-      point.residual_N = d.residual_N;
-      point.newton_iterations = r.iterations + d.steps;
-      if (!(d.residual_N <= tol)) {
-        out.complete = false;
-        std::ostringstream why;
-        why << "strain " << lambda << ": " << r.message << "; energy descent then stopped at residual " << d.residual_N
-            << " N > " << tol << " N after " << d.steps << " steps";
-        out.message = why.str();
-        break;
-      }
+      out.complete = false;
+      std::ostringstream why;
+      why << "strain " << lambda << ": " << r.message;
+      out.message = why.str();
+      break;
     }
     model->evaluate(0.0, q, Vec::Zero(q.size()), kForce, eval);
     double pull = 0.0;

@@ -53,6 +53,13 @@ class KnitModel : public TermModel {
   double coordinate(const Vec& q, int index) const {
     return is_dof(index) ? q[index] : constants_[constant_slot(index)];
   }
+  // Length of yarn y in state q: the span of its coordinates from its first visit to its last.
+  double yarn_length(const Vec& q, int y) const {
+    const KnitYarn& yarn = graph_.yarns()[y];
+    const KnitVisit &first = yarn.visits.front(), &last = yarn.visits.back();
+    return coordinate(q, graph_.node(last.node).coord[last.slot]) -
+           coordinate(q, graph_.node(first.node).coord[first.slot]);
+  }
   // DoFs a static solve of the periodic tile holds: node 0's position and one
   // coordinate per yarn (rigid translation and sliding a whole yarn along itself).
   std::vector<int> gauge_dofs() const;

@@ -31,14 +31,14 @@ std::string cache_key(const Scene& s) {
 
 }  // namespace
 
-namespace {
-
 double stiffest_yarn_N(const Scene& scene) {
   double ks = 0.0;
   for (const auto& [name, y] : scene.yarn_types)
     ks = std::max(ks, y.stretch_modulus_Pa * std::numbers::pi * scene.radius_m * scene.radius_m);
   return ks;
 }
+
+namespace {
 
 // The generated period lengths (wales·W, courses·C).
 std::array<double, 2> generated_period(const Scene& scene) {

@@ -33,6 +33,8 @@ struct KnitRestShape {
 // period when also |P_i| ≤ kKnitPeriodTolerance·k_s.
 inline constexpr double kKnitRestTolerance = 1e-9;
 inline constexpr double kKnitPeriodTolerance = 1e-7;
+// k_s = Y·πR² of the scene's stiffest yarn type [N]: the force scale of the knit's static tolerances.
+double stiffest_yarn_N(const Scene& scene);
 
 // Relaxes the tile of a knit scene (scene.knit set) at its generated period;
 // throws std::runtime_error when the solve does not converge.

@@ -55,6 +55,17 @@ class Cli : public ::testing::Test {
       EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
     EXPECT_FALSE(fs::exists(out)) << "output written for a bad scene";
   }
+  // `calibrate SCENE ARGS` for each case: exit 2, the fragment in the message, no output folder.
+  void expect_calibrate_rejected(const std::string& scene,
+                                 const std::vector<std::pair<std::string, std::string>>& cases) {
+    const fs::path out = dir_ / "cal";
+    for (const auto& [args, fragment] : cases) {
+      Result r = run_cli("calibrate '" + scene + "' " + args + " --out '" + out.string() + "'", dir_);
+      EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+      EXPECT_NE(r.output.find(fragment), std::string::npos) << args << ": missing '" << fragment << "' in " << r.output;
+      EXPECT_FALSE(fs::exists(out)) << args;
+    }
+  }
   fs::path dir_;
 };
 
@@ -409,7 +420,6 @@ TEST_F(Cli, EveryBadInputIsALocatedExit2) {
 const std::string kHangingWind = WEAVELAB_SOURCE_DIR "/experiments/scenes/hanging_wind.toml";
 
 TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
-  const fs::path out = dir_ / "cal";
   const std::vector<std::pair<std::string, std::string>> cases{
       {"--tests uniaxial-warp,twist", "unknown test 'twist'"},
       {"--tests shear,rotated-twist", "unknown test 'twist'"},
@@ -427,12 +437,20 @@ TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
       {"--resolution coarse", "--resolution: got 'coarse', expected 'controlled' or 'scene'"},
       {"--rtol 2", "--rtol: got 2"},
   };
-  for (const auto& [args, fragment] : cases) {
-    Result r = run_cli("calibrate '" + kHangingWind + "' " + args + " --out '" + out.string() + "'", dir_);
-    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
-    EXPECT_NE(r.output.find(fragment), std::string::npos) << args << ": missing '" << fragment << "' in " << r.output;
-    EXPECT_FALSE(fs::exists(out)) << args;
-  }
+  expect_calibrate_rejected(kHangingWind, cases);
+}
+
+TEST_F(Cli, CalibrateRefusesWhatAKnitPatchDoesNotOffer) {
+  // docs/calibration.md §8: each unsupported option is a located error before anything runs.
+  const std::string knit = WEAVELAB_SOURCE_DIR "/experiments/scenes/knit_stockinette.toml";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--validate '" + kHangingWind + "'", "is knitted"},
+      {"--border-strip", "--border-strip"},
+      {"--grid-line-bending", "--grid-line-bending"},
+      {"--tests rotated-shear", "expected it unrotated"},
+      {"--patch 5", "need at least 6"},
+  };
+  expect_calibrate_rejected(knit, cases);
 }
 
 TEST_F(Cli, CalibrateWritesAParameterFileThatRunReads) {

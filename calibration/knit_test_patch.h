@@ -1,0 +1,47 @@
+// Virtual material tests on a knit patch (docs/calibration.md §8). The knit's
+// material directions take the woven tests' names: the course (x, along each
+// yarn) is the warp-like direction u, the wale (y, up the loops) the weft-like
+// v. A test moves the patch's stitch contacts: both nodes of each contact
+// follow the test's map from their place in the relaxed rest shape (their depth
+// through the cloth along the surface normal), with the sliding coordinates of
+// the held contacts held. The rings are those of the strip test's grips
+// (docs/models.md §11.8): contact rows 0 and `courses` and the contacts of the
+// first and last wale; the bending tests hold the next row and wale too. The
+// continuum patch is the triangle mesh through the contact grid: column κ
+// (wale κ/2, left or right contact) at u = κW/2, row ρ at v = ρC, with the
+// same rings held.
+#pragma once
+#include "calibration/virtual_tests.h"
+#include "models/fem/fem_mesh.h"
+
+namespace wl {
+
+class KnitModel;
+class FemModel;
+
+// A knit patch of `patch` courses × `patch` wales (material_test_scene builds its scene): returns
+// `patch`, or throws std::invalid_argument for a patch too small or one the pattern's tile does
+// not cover whole.
+int check_knit_patch(const Scene& scene, int patch);
+// Smallest knit patch: the pattern's tile inside the two clamped rings, at least 6.
+int minimum_knit_patch(const Scene& scene);
+
+// The points of a knit patch: both nodes of every stitch contact, the contact
+// grid's centre, span (2·wales − 1)W/2 along u and area span·courses·C, R(0) reported.
+TestPoints knit_contact_points(const KnitModel& model);
+// The continuum patch on the contact grid and its points (vertex κ + 2·wales·ρ).
+FemMesh knit_contact_mesh(const Scene& test_scene);
+TestPoints knit_continuum_points(const Scene& test_scene);
+
+// Default ladders on a knit patch: strains up to 10 % (a knit's loops open far beyond the
+// woven's 2 %), shear angles up to 0.4 rad, curvatures up to one radian of turning over the
+// patch's span along the bend.
+std::vector<double> default_knit_ladder(TestKind kind, const Scene& test_scene);
+// Yarn mass of the knit test patch over its contact grid's area [kg/m²].
+double knit_areal_density(const Scene& test_scene);
+
+// The knit model's static tolerance: where Newton fails, energy descent to
+// kKnitRestTolerance·k_s of the stiffest yarn (docs/models.md §11.8).
+EquilibriumOptions knit_equilibrium_options(const Scene& test_scene);
+
+}  // namespace wl
