@@ -47,9 +47,10 @@ double first_approach(PairKind kind, const std::array<Vec3, 4>& x0, const std::a
   return alpha;
 }
 
-// The symmetric part of a 3×3 block with its negative eigenvalues set to 0.
-Mat3 psd_part(const Mat3& a) {
-  const Eigen::SelfAdjointEigenSolver<Mat3> eig(0.5 * (a + a.transpose()));
+// The symmetric part of a matrix with its negative eigenvalues set to 0.
+template <int N>
+Eigen::Matrix<double, N, N> positive_part(const Eigen::Matrix<double, N, N>& a) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, N, N>> eig(0.5 * (a + a.transpose()));
   return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
 }
 
@@ -69,12 +70,6 @@ SelfContactTerm::SelfContactTerm(ContactSurface surface, double dhat, double kap
   for (const auto& t : surface_.triangles)
     for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
   edges_.assign(edges.begin(), edges.end());
-  neighbours_.resize(n);
-  for (const auto& e : edges_) {
-    neighbours_[e[0]].push_back(e[1]);
-    neighbours_[e[1]].push_back(e[0]);
-  }
-  for (auto& nb : neighbours_) std::sort(nb.begin(), nb.end());
   for (int k = 0; k < n; ++k) {
     const int x = surface_.node_x[k];
     stencils_.push_back({x, x + 1, x + 2});
@@ -83,11 +78,11 @@ SelfContactTerm::SelfContactTerm(ContactSurface surface, double dhat, double kap
   block_.assign(n, Mat3::Zero());
 }
 
-// Pairs that share a node or hold two nodes joined by an edge are left out.
+// Pairs that share a node are left out.
 bool SelfContactTerm::excluded(const int* a, int na, const int* b, int nb) const {
   for (int i = 0; i < na; ++i)
     for (int j = 0; j < nb; ++j)
-      if (a[i] == b[j] || std::binary_search(neighbours_[a[i]].begin(), neighbours_[a[i]].end(), b[j])) return true;
+      if (a[i] == b[j]) return true;
   return false;
 }
 
@@ -161,10 +156,15 @@ void SelfContactTerm::prepare(const EvalContext& ctx) {
     const auto s = kernel_.stencil(e);
     for (int a = 0; a < 12; ++a) lq[a] = q[s[a]];
     kernel_.evaluate(e, lq.data(), nullptr, ElementOutput{f.data(), k.data()});
+    // H ⪯ H⁺ ⪯ m·blockdiag(H⁺), H⁺ the positive part of H = −∂F/∂x and m its
+    // non-zero node blocks (Cauchy–Schwarz): the step's stiffness bounds the pair's.
+    const Eigen::Matrix<double, 12, 12> hp = positive_part<12>(-k);
+    int m = 0;
+    for (int i = 0; i < 4; ++i) m += hp.block<3, 3>(3 * i, 3 * i).squaredNorm() > 0.0;
     for (int i = 0; i < 4; ++i) {
       const int n = active[e].node[i];
       force_[n] += f.segment<3>(3 * i);
-      block_[n] -= psd_part(-k.block<3, 3>(3 * i, 3 * i));
+      block_[n] -= m * hp.block<3, 3>(3 * i, 3 * i);
     }
   }
 }
@@ -197,8 +197,8 @@ void add_self_contact(const Scene& scene, const ObstacleContactRule& rule, doubl
     std::ostringstream msg;
     msg << scene.source << ":" << scene.self_contact.line << ": self_contact.activation_distance_m: d̂ = " << dhat
         << " m; expected d̂ below " << bound << " m, "
-        << (closest < node_spacing_m ? "the distance at which two surface primitives that share no node or edge "
-                                       "start (the cloth must not feel itself at rest)"
+        << (closest < node_spacing_m ? "the distance at which two surface primitives that share no node start "
+                                       "(the cloth must not feel itself at rest)"
                                      : "the node spacing");
     throw std::invalid_argument(msg.str());
   }

@@ -8,7 +8,8 @@
 // element per surface node (stencil: its 3 position DoFs). prepare() finds and
 // evaluates the pairs; each node receives its exact force and, as ∂f/∂q, the
 // 3×3 diagonal blocks of the pairs' Hessians, each projected to positive
-// semi-definite (block-Jacobi; the couplings between nodes are left out).
+// semi-definite and scaled by the pair's number of non-zero blocks, which
+// bounds the pair's Hessian from above (the couplings between nodes are left out).
 #pragma once
 #include <array>
 #include <memory>
@@ -70,7 +71,6 @@ class SelfContactTerm : public StencilTerm<3> {
 
   ContactSurface surface_;
   std::vector<std::array<int, 2>> edges_;
-  std::vector<std::vector<int>> neighbours_;  // per node, sorted
   double dhat_;
   SelfContactPairTerm kernel_;
   std::vector<Vec3> force_;

@@ -178,10 +178,10 @@ TEST(SelfContactSteps, TrianglesThrownAtEachOtherNeverCross) {
   }
 }
 
-// d̂ ≥ the node spacing ℓ is refused, naming the key, and so is a d̂ ≥ the
-// distance of two primitives of the initial cloth that share no node or edge
-// (√2 ℓ in the flat cloth; 0.3 mm for two triangles that start that far
-// apart); ℓ/2 in the flat cloth is accepted; self-contact is off by default.
+// A d̂ ≥ the distance of two primitives of the initial cloth that share no
+// node is refused, naming the key: √½ ℓ in the flat cloth (a node and the
+// diagonal of its cell), 0.3 mm for two triangles that start that far apart;
+// ℓ/2 in the flat cloth is accepted; self-contact is off by default.
 TEST(SelfContactScene, ADistanceTheFlatClothWouldFeelIsRefused) {
   const std::string base =
       "[cloth]\nwarps = 6\nwefts = 6\nspacing_m = 0.001\n[pose]\nkind = \"flat\"\n[self_contact]\nenabled = true\n";
@@ -189,14 +189,16 @@ TEST(SelfContactScene, ADistanceTheFlatClothWouldFeelIsRefused) {
     EXPECT_FALSE(parse_scene("[cloth]\nwarps = 3\nwefts = 3\n", "s.toml").self_contact.enabled);
     const Scene fine = parse_scene(base + "activation_distance_m = 0.0005\n", "s.toml");
     EXPECT_NE(make_model(fine, model)->describe().at("terms").find("self_contact"), std::string::npos) << model;
-    const Scene coarse = parse_scene(base + "activation_distance_m = 0.0011\n", "s.toml");
+    const Scene coarse = parse_scene(base + "activation_distance_m = 0.00075\n", "s.toml");
     try {
       make_model(coarse, model);
       ADD_FAILURE() << model << ": accepted";
     } catch (const std::invalid_argument& e) {
       const std::string what = e.what();
       EXPECT_NE(what.find("s.toml:7: self_contact.activation_distance_m"), std::string::npos) << what;
-      EXPECT_NE(what.find("below 0.001 m, the node spacing"), std::string::npos) << what;
+      EXPECT_NE(what.find("below 0.000707107 m, the distance at which two surface primitives that share no node"),
+                std::string::npos)
+          << what;
     }
   }
   Scene s = parse_scene(base, "s.toml");
