@@ -8,9 +8,8 @@
 #include <stdexcept>
 
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
-#include <Eigen/Eigenvalues>
-
 #include <CGAL/box_intersection_d.h>
+#include <Eigen/Eigenvalues>
 
 namespace wl {
 
