@@ -16,6 +16,9 @@
 # docs/models.md §3.11.6) so that it settles; summary.json's "settle" gives the
 # end state's largest force and kinetic energy.
 # WL_MODELS (default "yarn fem") chooses the models.
+# WL_SELF_CONTACT=1 runs the drape with cloth–cloth contact ([self_contact],
+# docs/models.md §3.11.7), into results/<scene>_self/; WL_SELF_STIFFNESS (N/m)
+# sets its κ (stiffness_N_per_m).
 # Results under results/cusick/ (results/<scene>/ for another scene): the runs,
 # drape_<model>.csv (with kinetic energy, intersecting triangle pairs and the
 # closest node to the pedestal per frame) and cost.txt.
@@ -25,6 +28,8 @@ name=${WL_SCENE:-cusick_drape_65}
 scene=experiments/scenes/$name.toml
 out=results/cusick
 if [ "$name" != cusick_drape_65 ]; then out=results/$name; fi
+self=${WL_SELF_CONTACT:-0}
+if [ "$self" = 1 ]; then out=${out}_self; fi
 python=/usr/bin/python3
 duration=${WL_DURATION:-0.05}
 free=${WL_FREE:-1}
@@ -39,9 +44,13 @@ text = open(sys.argv[1]).read()
 print(re.sub(r"\[\[obstacles\]\].*?(?=\n\[)", "", text, flags=re.S))
 PY
 # The drape scene as run, with the settling phase if WL_SETTLE_DT is set.
-"$python" - "$scene" "${WL_SETTLE_AFTER:-0.2}" "${WL_SETTLE_DT:-}" "$duration" <<'PY' >"$out/drape.toml"
+"$python" - "$scene" "${WL_SETTLE_AFTER:-0.2}" "${WL_SETTLE_DT:-}" "$duration" "$self" "${WL_SELF_STIFFNESS:-}" <<'PY' >"$out/drape.toml"
 import re, sys
 text, after, dt, duration = open(sys.argv[1]).read(), sys.argv[2], sys.argv[3], sys.argv[4]
+if sys.argv[5] == "1":
+    text += "\n[self_contact]\nenabled = true\n"
+    if sys.argv[6]:
+        text += f"stiffness_N_per_m = {sys.argv[6]}\n"
 if dt:  # the scene's own duration must reach past settle_after_s
     text = re.sub(r"^duration_s = .*$", f"duration_s = {duration}", text, flags=re.M)
     text = re.sub(r"^\[time\]\n", f"[time]\nsettle_after_s = {after}\nsettle_dt_s = {dt}\n", text, flags=re.M)

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "models/common/handle_spring.h"
+#include "models/common/self_contact.h"
 #include "models/common/wind.h"
 #include "models/common/yarn_damper.h"
 #include "models/fem/deformation_gradient.h"
@@ -251,6 +252,14 @@ void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
     const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
     const ObstacleContactRule rule = obstacle_contact_rule(scene_, scene_.fem.stride * scene_.spacing_m, m);
     obstacles_ = ObstacleContact(scene_, rule, node_x, q0_, terms);
+  }
+  // Cloth–cloth contact over the mesh's triangles (docs/models.md §3.11.7).
+  if (scene_.self_contact.enabled) {
+    ContactSurface surface{mesh_.triangles, {}};
+    for (int i = 0; i < nv; ++i) surface.node_x.push_back(3 * i);
+    const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
+    const double l = scene_.fem.stride * scene_.spacing_m;
+    add_self_contact(scene_, self_contact_rule(scene_, l, m), l, surface, q0_, terms);
   }
 }
 

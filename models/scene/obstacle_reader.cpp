@@ -85,6 +85,14 @@ void read_one(TableReader& t, Scene& s) {
 
 void read_obstacles(TableReader& top, Scene& s) {
   for (TableReader& t : top.table_array("obstacles")) read_one(t, s);
+  if (auto sc = top.subtable("self_contact")) {
+    SelfContactParams& p = s.self_contact;
+    p.line = sc->line();
+    sc->read_bool("enabled", p.enabled);
+    sc->read_number("activation_distance_m", p.activation_distance_m, "a number > 0 (m)", positive);
+    sc->read_number("stiffness_N_per_m", p.stiffness_N_per_m, "a number > 0 (N/m)", positive);
+    sc->finish();
+  }
   auto c = top.subtable("obstacle_contact");
   if (!c) return;
   ObstacleContactParams& p = s.obstacle_contact;

@@ -76,6 +76,7 @@
 //     cylinder, disk), half_extents_m = [a, b, c] (box), height_m (cylinder),
 //     thickness_m (disk)
 //   [obstacle_contact]  activation_distance_m, stiffness_N_per_m, friction_speed_m_per_s > 0
+//   [self_contact]  enabled (bool), activation_distance_m, stiffness_N_per_m > 0
 //
 // ERRORS: SceneError with file, line (source line of the offending value; for a
 // missing key or a violated default, the line of its table), the dotted key
@@ -530,7 +531,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   TableReader top(src, root, "");
   // Unknown tables first: a misspelt table name is the likeliest error.
   top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "damping", "time",
-               "terms", "fem", "obstacles", "obstacle_contact", "knit"});
+               "terms", "fem", "obstacles", "obstacle_contact", "self_contact", "knit"});
   top.finish();
   const auto yarn_defs = read_yarn_types(top);
   read_cloth(top, s, yarn_defs);

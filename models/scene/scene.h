@@ -130,6 +130,15 @@ struct ObstacleContactParams {
   double friction_speed_m_per_s = 1e-3;         // ε_v of the smoothed Coulomb law
 };
 
+// Cloth–cloth contact (docs/models.md §3.11.7), off unless enabled; absent
+// values follow the obstacles' rules.
+struct SelfContactParams {
+  bool enabled = false;
+  std::optional<double> activation_distance_m;  // d̂
+  std::optional<double> stiffness_N_per_m;      // κ
+  int line = 0;                                 // the [self_contact] table in the scene file
+};
+
 struct TermSwitches {
   bool stretch = true, bending = true, shear = true, parallel_contact = true, friction = true;
   bool gravity = true, wind = true, handles = true, inertia = true;
@@ -200,6 +209,7 @@ struct Scene {
   FemSettings fem;
   std::vector<ObstacleSpec> obstacles;
   ObstacleContactParams obstacle_contact;
+  SelfContactParams self_contact;
 
   int nodes_u() const { return wefts; }  // nodes along a warp = number of wefts
   int nodes_v() const { return warps; }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "models/common/handle_spring.h"
+#include "models/common/self_contact.h"
 #include "models/common/wind.h"
 #include "models/common/yarn_damper.h"
 #include "models/scene/parameter_keys.h"
@@ -57,6 +58,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   if (scene_.yarn_viscosity_Pa_s > 0.0) add_damping();
   add_pins();
   add_obstacles();
+  add_self_contact();
   if (normals_ && scene.exact_contact_jacobian) {
     normals_->compute(q0_);
     normals_->compute_gradient(q0_);  // the structure of ∂F_n/∂q, the same at every state
@@ -307,6 +309,25 @@ void YarnModel::add_obstacles() {
   for (const auto& [name, y] : scene_.yarn_types) rho = std::max(rho, y.density_kg_per_m);
   const double L = scene_.spacing_m;
   obstacles_ = ObstacleContact(scene_, obstacle_contact_rule(scene_, L, 2.0 * rho * L), node_x, q0_, terms_);
+}
+
+// Cloth–cloth contact over the crossing grid, each cell split along
+// (i,j)–(i+1,j+1) as the intersection count splits it (docs/models.md §3.11.7).
+void YarnModel::add_self_contact() {
+  if (!scene_.self_contact.enabled) return;
+  ContactSurface surface;
+  for (int k = 0; k < grid_.num_nodes(); ++k) surface.node_x.push_back(grid_.dofs(k).x);
+  for (int j = 0; j + 1 < grid_.nv(); ++j)
+    for (int i = 0; i + 1 < grid_.nu(); ++i) {
+      const int n00 = grid_.node(i, j), n10 = grid_.node(i + 1, j), n11 = grid_.node(i + 1, j + 1),
+                n01 = grid_.node(i, j + 1);
+      surface.triangles.push_back({n00, n10, n11});
+      surface.triangles.push_back({n00, n11, n01});
+    }
+  double rho = 0.0;
+  for (const auto& [name, y] : scene_.yarn_types) rho = std::max(rho, y.density_kg_per_m);
+  const double L = scene_.spacing_m;
+  wl::add_self_contact(scene_, self_contact_rule(scene_, L, 2.0 * rho * L), L, surface, q0_, terms_);
 }
 
 Frame YarnModel::obstacle_frame(double t) const {

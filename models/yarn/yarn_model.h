@@ -81,6 +81,7 @@ class YarnModel : public TermModel {
   void add_damping();
   void add_pins();
   void add_obstacles();
+  void add_self_contact();
 
   std::array<int, 8> segment_stencil(const Segment& s) const;
   double cross_section() const;  // πR² [m²]

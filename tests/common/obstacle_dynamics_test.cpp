@@ -18,28 +18,13 @@
 #include "models/core/term_model.h"
 #include "models/fem/terms/nodal_gravity.h"
 #include "models/model_factory.h"
+#include "tests/support/node_mass.h"
 #include "tests/support/obstacle_meshes.h"
 
 namespace wl {
 namespace {
 
 constexpr double kMass = 1e-3, kG = 9.81, kDhat = 1e-3, kKappa = 50.0;
-
-// A point mass m I (a constant mass block, no force).
-class PointMassTerm : public StencilTerm<3> {
- public:
-  explicit PointMassTerm(double m) : m_(m) { stencils_.push_back({0, 1, 2}); }
-  std::string name() const override { return "point-mass"; }
-  std::unique_ptr<Term> clone() const override { return std::make_unique<PointMassTerm>(*this); }
-  bool provides_mass() const override { return true; }
-  double energy(int, const double*) const override { return 0.0; }
-  void evaluate(int, const double*, const double*, const ElementOutput& out) const override {
-    if (out.mass) MatMap(out.mass) = m_ * Mat3::Identity();
-  }
-
- private:
-  double m_;
-};
 
 // One node of mass m under gravity among the scene's obstacles.
 class NodeModel : public TermModel {
@@ -48,7 +33,7 @@ class NodeModel : public TermModel {
     num_dofs_ = 3;
     q0_ = x0;
     v0_ = v0;
-    terms_.push_back(std::make_unique<PointMassTerm>(kMass));
+    terms_.push_back(std::make_unique<test::NodeMassTerm>(1, kMass));
     auto g = std::make_unique<NodalGravityTerm>(Vec3(0, 0, -kG));
     g->add({0, 1, 2}, kMass);
     terms_.push_back(std::move(g));

@@ -469,5 +469,23 @@ TEST(SceneErrors, ObstacleShapeSizesAndRequiredKeys) {
                "a number > 0");
 }
 
+// Self-contact (docs/models.md §3.11.7): off by default, every key read,
+// distances and stiffness positive, enabled a bool.
+TEST(SceneParse, SelfContactKeys) {
+  EXPECT_FALSE(parse_scene("", "o.toml").self_contact.enabled);
+  const Scene s = parse_scene(
+      "[cloth]\nwarps = 3\n[self_contact]\nenabled = true\nactivation_distance_m = 0.0002\nstiffness_N_per_m = 3.5\n",
+      "o.toml");
+  EXPECT_TRUE(s.self_contact.enabled);
+  EXPECT_EQ(*s.self_contact.activation_distance_m, 0.0002);
+  EXPECT_EQ(*s.self_contact.stiffness_N_per_m, 3.5);
+  EXPECT_EQ(s.self_contact.line, 3);
+  expect_error("[self_contact]\nenabled = true\nactivation_distance_m = 0\n", 3, "self_contact.activation_distance_m",
+               "a number > 0");
+  expect_error("[self_contact]\nstiffness_N_per_m = -2\n", 2, "self_contact.stiffness_N_per_m", "a number > 0");
+  expect_error("[self_contact]\nenabled = 1\n", 2, "self_contact.enabled", "true or false");
+  expect_error("[self_contact]\nenable = true\n", 2, "self_contact.enable", "");
+}
+
 }  // namespace
 }  // namespace wl

@@ -1,0 +1,45 @@
+// Cloth–cloth contact barrier of one primitive pair (docs/models.md §3.11.7):
+// a point and a triangle, or two edges, of the cloth surface, with d their
+// distance (primitive_distance.h) and the barrier b of the obstacles
+// (§3.11.2, contact_barrier):
+//   E = κ b(d),  F = −κ b'(d) ∇d,  ∇_{xᵢ} d = λᵢ r/d,
+// ∂F/∂x by forward-mode AD of F within the closest points' support.
+//
+// One element per pair; local stencil: the 4 nodes' positions (12 DoFs),
+// ordered as in primitive_distance.h. The pairs change with the state: the
+// self-contact term (self_contact.h) rebuilds them and gathers their results;
+// this term is the unit its elements are checked as.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "models/common/primitive_distance.h"
+#include "models/core/term.h"
+
+namespace wl {
+
+class SelfContactPairTerm : public StencilTerm<12> {
+ public:
+  // d̂ > 0 [m], κ > 0 [N/m].
+  SelfContactPairTerm(double dhat, double kappa);
+  void clear();
+  void add(const std::array<int, 12>& stencil, PairKind kind);
+
+  std::string name() const override { return "self_contact_pair"; }
+  std::unique_ptr<Term> clone() const override { return std::make_unique<SelfContactPairTerm>(*this); }
+  double energy(int e, const double* q) const override;
+  void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+
+  PairKind kind(int e) const { return kind_[e]; }
+  double activation_distance() const { return dhat_; }
+
+ private:
+  double dhat_, kappa_;
+  std::vector<PairKind> kind_;
+};
+
+// The 4 nodes of a local stencil of 12 position DoFs.
+std::array<Vec3, 4> pair_nodes(const double* q);
+
+}  // namespace wl
