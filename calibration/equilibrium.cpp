@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "models/core/energy_descent.h"
 
@@ -55,12 +56,17 @@ EquilibriumResult EquilibriumSolver::solve(Vec& q, const EquilibriumOptions& opt
     res.message = why.str();
     return res;
   }
-  if (neg_k_.nonZeros() != eval_.dfdq.nonZeros()) neg_k_ = eval_.dfdq;
+  res.converged = true;  // a minimum; only solve_free() needs the factorization
+  res.message = factorize_stiffness() ? "" : "singular stiffness at the energy minimum: no solve_free()";
+  return res;
+}
+
+bool EquilibriumSolver::factorize_stiffness() {
+  if (neg_k_.nonZeros() != eval_.dfdq.nonZeros()) neg_k_ = eval_.dfdq;  // the pattern, once
   std::transform(eval_.dfdq.valuePtr(), eval_.dfdq.valuePtr() + eval_.dfdq.nonZeros(), neg_k_.valuePtr(),
                  [](double k) { return -k; });
-  res.converged = true;  // a minimum; only solve_free() needs the factorization
-  res.message = solver_->factorize(neg_k_) ? "" : "singular stiffness at the energy minimum: no solve_free()";
-  return res;
+  factored_ = solver_->factorize(neg_k_);
+  return factored_;
 }
 
 EquilibriumResult EquilibriumSolver::newton(Vec& q, const EquilibriumOptions& opt) {
@@ -74,10 +80,7 @@ EquilibriumResult EquilibriumSolver::newton(Vec& q, const EquilibriumOptions& op
       return res;
     }
     const double tol = opt.rtol * held_norm(eval_.force) + opt.atol;
-    if (neg_k_.nonZeros() != eval_.dfdq.nonZeros()) neg_k_ = eval_.dfdq;  // the pattern, once
-    std::transform(eval_.dfdq.valuePtr(), eval_.dfdq.valuePtr() + eval_.dfdq.nonZeros(), neg_k_.valuePtr(),
-                   [](double k) { return -k; });
-    const bool factored = solver_->factorize(neg_k_);
+    const bool factored = factorize_stiffness();
     if (res.residual <= tol) {
       res.converged = factored;
       if (!factored) res.message = "singular stiffness at equilibrium";
@@ -121,6 +124,9 @@ EquilibriumResult EquilibriumSolver::newton(Vec& q, const EquilibriumOptions& op
   }
 }
 
-void EquilibriumSolver::solve_free(const Vec& b, Vec& x) const { solver_->solve(b, x); }
+void EquilibriumSolver::solve_free(const Vec& b, Vec& x) const {
+  if (!factored_) throw std::runtime_error("equilibrium: no factorized stiffness at this state for solve_free()");
+  solver_->solve(b, x);
+}
 
 }  // namespace wl

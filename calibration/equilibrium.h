@@ -53,7 +53,10 @@ class EquilibriumSolver {
 
   // Makes the next solve() what it is on a new solver for the same model and
   // DoFs (the sparse solver restart()s), keeping the pattern work.
-  void restart() { solver_->restart(); }
+  void restart() {
+    solver_->restart();
+    factored_ = false;
+  }
 
   // Force and ∂f/∂q at the state of the last solve.
   const Evaluation& evaluation() const { return eval_; }
@@ -65,6 +68,8 @@ class EquilibriumSolver {
   EquilibriumResult newton(Vec& q, const EquilibriumOptions& options);
   double free_norm(const Vec& f) const;
   double held_norm(const Vec& f) const;
+  // Factorizes −K at eval_ for the Newton step and solve_free(); false when singular.
+  bool factorize_stiffness();
 
   Model& model_;
   std::vector<int> held_;  // pinned ∪ prescribed, sorted
@@ -72,6 +77,7 @@ class EquilibriumSolver {
   std::unique_ptr<SparseSolver> solver_;
   Evaluation eval_;
   SparseMatrix neg_k_;
+  bool factored_ = false;  // −K at the current state is factorized
   Vec zero_v_;
 };
 

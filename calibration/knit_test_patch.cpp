@@ -1,6 +1,7 @@
 #include "calibration/knit_test_patch.h"
 
 #include <algorithm>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -50,6 +51,13 @@ TestPoints grid_frame(const ContactGrid& g) {
 int minimum_knit_patch(const Scene& scene) {
   const auto [courses, wales] = tile_size(scene);
   return std::max(6, std::max(courses, wales) + 4);
+}
+
+int default_knit_patch(const Scene& scene, int largest) {
+  const auto [tile_courses, tile_wales] = tile_size(scene);
+  const int step = std::lcm(tile_courses, tile_wales), smallest = minimum_knit_patch(scene);
+  const int below = largest / step * step;
+  return below >= smallest ? below : (smallest + step - 1) / step * step;
 }
 
 int check_knit_patch(const Scene& scene, int patch) {

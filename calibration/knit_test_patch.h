@@ -17,7 +17,6 @@
 namespace wl {
 
 class KnitModel;
-class FemModel;
 
 // A knit patch of `patch` courses × `patch` wales (material_test_scene builds its scene): returns
 // `patch`, or throws std::invalid_argument for a patch too small or one the pattern's tile does
@@ -25,6 +24,9 @@ class FemModel;
 int check_knit_patch(const Scene& scene, int patch);
 // Smallest knit patch: the pattern's tile inside the two clamped rings, at least 6.
 int minimum_knit_patch(const Scene& scene);
+// The largest patch up to `largest` that check_knit_patch accepts (a multiple of the tile), or the
+// smallest it accepts when none is that small.
+int default_knit_patch(const Scene& scene, int largest);
 
 // The points of a knit patch: both nodes of every stitch contact, the contact
 // grid's centre, span (2·wales − 1)W/2 along u and area span·courses·C, R(0) reported.

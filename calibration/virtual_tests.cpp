@@ -173,7 +173,8 @@ Scene material_test_scene(const Scene& scene, int patch, bool sliding) {
   t.height_m = 0.0;
   t.pins.clear();
   t.handles.clear();
-  t.obstacles.clear();  // the fabric alone: a scene's ledge or floor is not part of the material
+  t.obstacles.clear();             // the fabric alone: a scene's ledge or floor is not part of the material
+  t.self_contact.enabled = false;  // nor does it fold onto itself
   t.gravity_m_per_s2 = {0.0, 0.0, 0.0};
   t.wind_velocity_m_per_s = {0.0, 0.0, 0.0};
   t.air_density_kg_per_m3 = t.wind_drag_Ns_per_m3 = 0.0;

@@ -17,7 +17,7 @@
 # end state's largest force and kinetic energy.
 # WL_MODELS (default "yarn fem") chooses the models.
 # WL_SELF_CONTACT=1 runs the drape with cloth–cloth contact ([self_contact],
-# docs/models.md §3.11.7), into results/<scene>_self/; WL_SELF_STIFFNESS (N/m)
+# docs/models.md §3.11.7), into the results folder with _self appended; WL_SELF_STIFFNESS (N/m)
 # sets its κ (stiffness_N_per_m).
 # Results under results/cusick/ (results/<scene>/ for another scene): the runs,
 # drape_<model>.csv (with kinetic energy, intersecting triangle pairs and the
@@ -29,6 +29,10 @@ scene=experiments/scenes/$name.toml
 out=results/cusick
 if [ "$name" != cusick_drape_65 ]; then out=results/$name; fi
 self=${WL_SELF_CONTACT:-0}
+case $self in 0 | 1) ;; *) echo "cusick.sh: WL_SELF_CONTACT: got '$self', expected 0 or 1" >&2; exit 2 ;; esac
+if [ "$self" = 0 ] && [ -n "${WL_SELF_STIFFNESS:-}" ]; then
+  echo "cusick.sh: WL_SELF_STIFFNESS is set without WL_SELF_CONTACT=1" >&2; exit 2
+fi
 if [ "$self" = 1 ]; then out=${out}_self; fi
 python=/usr/bin/python3
 duration=${WL_DURATION:-0.05}

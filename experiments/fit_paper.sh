@@ -10,7 +10,7 @@
 # Then μ on a scene where yarns slide (slide_pull_7.toml), alone and with the other parameters.
 # Writes results/fit_paper/<run>/ (fit.json, charts) and results/fit_paper/table.md;
 # fits already in the folder are kept (delete it to redo them).
-# About 32 min on this shared 2-core machine (load average 7–10); `fit_paper.sh slide` runs only the μ fits (a few minutes),
+# About 32 min on a 2-core machine at load average 7–10; `fit_paper.sh slide` runs only the μ fits (a few minutes),
 # `fit_paper.sh hanging` only the others.
 set -euo pipefail
 cd "$(dirname "$0")/.."

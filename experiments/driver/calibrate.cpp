@@ -182,7 +182,9 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   }
   const int size =
       p.scene.knit ? std::min(p.scene.knit->courses, p.scene.knit->wales) : std::min(p.scene.warps, p.scene.wefts);
-  const int patch = c.patch > 0 ? c.patch : std::max(std::min(size, 33), minimum_patch(p.scene));
+  const int patch = c.patch > 0    ? c.patch
+                    : p.scene.knit ? default_knit_patch(p.scene, std::min(size, 33))
+                                   : std::max(std::min(size, 33), minimum_patch(p.scene));
   p.test_scene = material_test_scene(p.scene, patch, c.sliding);  // too small: invalid_argument
   p.test_scene.fem.border_strip = c.border_strip;
   p.test_scene.fem.grid_line_bending = c.grid_line_bending;

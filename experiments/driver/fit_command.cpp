@@ -11,6 +11,7 @@
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
 #include "experiments/output/run_reader.h"
+#include "models/common/self_contact.h"
 #include "models/fem/fem_material.h"
 
 namespace wl {
@@ -71,6 +72,7 @@ Json fit_error_budget(const FitCommandConfig& c, const FitCommandPlan& p, const 
 FitCommandPlan plan_fit(const FitCommandConfig& c) {
   FitCommandPlan p;
   p.scene = load_scene(c.scene_path.string());
+  refuse_self_contact(p.scene, "fit (its forward sensitivities)");
   if (!c.resolution.scene) {
     if (!c.fit.integrator.empty() && c.fit.integrator != "sdirk2")
       throw TrajectoryFitError("--integrator: got '" + c.fit.integrator +

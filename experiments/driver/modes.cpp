@@ -11,6 +11,7 @@
 #include "experiments/output/json_writer.h"
 #include "experiments/output/vtu_writer.h"
 #include "integrators/integrator.h"
+#include "models/common/self_contact.h"
 #include "models/fem/fem_material.h"
 #include "models/fem/fem_model.h"
 #include "models/model_factory.h"
@@ -102,6 +103,7 @@ Json model_json(const LinearizedModes& lm, int dofs) {
 }  // namespace
 
 Scene modal_scene(const Scene& scene) {
+  refuse_self_contact(scene, "modes (the linearization)");
   Scene s = scene;
   s.terms.wind = false;
   s.wind_velocity_m_per_s = {0.0, 0.0, 0.0};

@@ -104,6 +104,7 @@ PullResult run_pull(const Scene& scene_in, const PullConfig& config) {
   scene.pins.clear();
   scene.handles.clear();
   scene.obstacles.clear();
+  scene.self_contact.enabled = false;
   TermSwitches& on = scene.terms;
   on.gravity = on.wind = on.handles = on.friction = on.inertia = false;
   scene.yarn_viscosity_Pa_s = 0.0;

@@ -184,6 +184,14 @@ double SelfContactTerm::admissible_fraction(const EvalContext& from, const EvalC
   return alpha;
 }
 
+void refuse_self_contact(const Scene& scene, const std::string& what) {
+  if (!scene.self_contact.enabled) return;
+  throw std::invalid_argument(scene.source + ":" + std::to_string(scene.self_contact.line) +
+                              ": self_contact.enabled: " + what +
+                              " needs the exact stiffness, of which self-contact assembles a bound "
+                              "(docs/models.md §3.11.7); expected a scene without it");
+}
+
 void add_self_contact(const Scene& scene, const ObstacleContactRule& rule, double node_spacing_m,
                       ContactSurface surface, const Vec& q0, std::vector<std::unique_ptr<Term>>& terms) {
   if (!scene.self_contact.enabled) return;

@@ -1,7 +1,7 @@
 // Cloth–cloth contact (docs/models.md §3.11.7): point–triangle and edge–edge
 // barriers (self_contact_pair.h) over the cloth's surface triangles, the pairs
 // found at every evaluation by CGAL's box intersection over the primitives'
-// boxes inflated by d̂, and continuous collision over every step's move.
+// boxes widened by d̂/2 on every side, and continuous collision over every step's move.
 //
 // The pairs couple nodes far apart in the mesh, which the model's fixed
 // sparsity pattern (docs/design.md §3.1) does not hold: this term has one
@@ -13,6 +13,7 @@
 #pragma once
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "models/common/obstacle_contact.h"
@@ -55,13 +56,11 @@ class SelfContactTerm : public StencilTerm<3> {
     PairKind kind;
     std::array<int, 4> node;  // surface nodes, ordered as in primitive_distance.h
   };
-  // The pairs (not excluded) whose boxes, swept from q0 to q1 and inflated by
-  // `margin`, overlap.
+  // The pairs (not excluded) whose boxes, swept from q0 to q1 and widened by
+  // margin/2 on every side, overlap.
   std::vector<Pair> candidates(const Vec& q0, const Vec& q1, double margin) const;
   // Their distance at q.
   double distance(const Pair& p, const Vec& q) const;
-  // Pairs closer than d̂ at the last prepared state.
-  int active_pairs() const { return kernel_.num_elements(); }
 
   static constexpr double kApproachFraction = 0.1;  // η
 
@@ -82,5 +81,9 @@ class SelfContactTerm : public StencilTerm<3> {
 // node spacing ℓ or a pair starts closer than d̂ (the cloth would feel itself at rest).
 void add_self_contact(const Scene& scene, const ObstacleContactRule& rule, double node_spacing_m,
                       ContactSurface surface, const Vec& q0, std::vector<std::unique_ptr<Term>>& terms);
+
+// Throws std::invalid_argument naming the scene's [self_contact] line when it is
+// enabled: `what` needs the exact ∂f/∂q, of which self-contact assembles a bound.
+void refuse_self_contact(const Scene& scene, const std::string& what);
 
 }  // namespace wl

@@ -31,9 +31,6 @@ class SelfContactPairTerm : public StencilTerm<12> {
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
-  PairKind kind(int e) const { return kind_[e]; }
-  double activation_distance() const { return dhat_; }
-
  private:
   double dhat_, kappa_;
   std::vector<PairKind> kind_;

@@ -27,7 +27,7 @@
 //     "default" is YarnType{} of scene.h unless defined here.
 //   [knit]                   knit scenes only (docs/models.md §11)
 //     roll_stiffness_N, stitch_length_stiffness_N, compression_stiffness_N_per_m   ≥ 0
-//   A knit scene takes no [wind], [fem] or [[obstacles]] (not supported yet); its [[pins]] and
+//   A knit scene takes no [wind], [fem], [[obstacles]] or [self_contact] (not supported yet); its [[pins]] and
 //   [[handles]] name stitch contacts: node = [i, j], 0 ≤ i ≤ courses (contact row), 0 ≤ j < 2·wales.
 //   [contact]
 //     shear_model, friction_model      "gong" | "cirio"
@@ -431,7 +431,7 @@ void read_knit(TableReader& top, Scene& s) {
     k->finish();
   }
   if (!s.knit) return;
-  for (const char* table : {"wind", "fem", "obstacles"})
+  for (const char* table : {"wind", "fem", "obstacles", "self_contact"})
     if (const toml::node* n = top.table().get(table))
       top.source().fail(line_of(*n), table, "[" + std::string(table) + "]",
                         "no [" + std::string(table) + "] in a knit scene (not supported for knits yet)");

@@ -128,7 +128,7 @@ TEST(VirtualTests, PatchSmallerThanThePatternIsRejected) {
 }
 
 TEST(VirtualTests, YarnTestsRunAtOnceGiveTheCurvesOfOneAfterAnother) {
-  // Three tests of a sliding patch on two threads: each curve bitwise that of run_yarn_test alone.
+  // Three tests of a patch on two threads: each curve bitwise that of run_yarn_test alone.
   const Scene patch = material_test_scene(hanging_wind(), 7);
   const std::vector<TestSpec> tests{
       {TestKind::uniaxial_warp, {0.005, 0.01}}, {TestKind::shear, {0.05, 0.1}}, {TestKind::bending_weft, {2.0, 4.0}}};

@@ -120,6 +120,15 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("nothing"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
+  // Self-contact assembles a bound of its stiffness, not the exact one the sensitivities need.
+  const fs::path self = dir_ / "self.toml";
+  std::ofstream(self) << test::hanging_cloth_toml(5, 0.02, "be-newton") << "\n[self_contact]\nenabled = true\n";
+  const auto s = cli("fit " + test::shell_quote(self.string()) + " --target " + test::shell_quote(target().string()) +
+                     " --free contact.shear_modulus_Pa --out " + test::shell_quote(out.string()));
+  EXPECT_EQ(s.exit_code, 2) << s.output;
+  EXPECT_NE(s.output.find("self.toml:"), std::string::npos) << s.output;
+  EXPECT_NE(s.output.find("self_contact.enabled: fit"), std::string::npos) << s.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

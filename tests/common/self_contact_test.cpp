@@ -10,6 +10,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
+
 #include "integrators/integrator.h"
 #include "models/common/obstacle_barrier.h"
 #include "models/common/self_contact.h"
@@ -176,6 +178,51 @@ TEST(SelfContactSteps, TrianglesThrownAtEachOtherNeverCross) {
     EXPECT_GT(integ->stats().rejected_steps, 0) << name << ": the step was never retaken";
     EXPECT_LT(integ->v()[2], 0.0) << name << ": the lower triangle did not rebound";
   }
+}
+
+// The assembled term against its pairs (docs/models.md §3.11.7): the per-node
+// force is −∇ of the summed pair energies κ b(d) (central differences over the
+// pairs the broad phase finds), and the step stiffness −∂f/∂q it assembles,
+// block-diagonal, bounds the pairs' Hessian H from above (−∂f/∂q − H ⪰ 0),
+// for two tilted triangles 0.3–0.5 d̂ apart, where several pairs are active.
+TEST(SelfContactTerm, ForceIsMinusTheGradientOfThePairsAndItsStiffnessBoundsTheirHessian) {
+  TwoTriangles model(0.0);
+  const double dhat = 0.5 * kDhat;
+  Vec q = model.initial_q();
+  for (int k = 0; k < 3; ++k) q[9 + 3 * k + 2] -= 2e-3 - 0.3 * dhat;  // 0.3 d̂ above the first
+  q[11] += 0.2 * dhat;                                                // tilted
+  q[5] -= 0.1 * dhat;
+  const Vec v = Vec::Zero(18);
+  const SelfContactTerm pairs(ContactSurface{{{0, 1, 2}, {3, 4, 5}}, {0, 3, 6, 9, 12, 15}}, dhat, kKappa);
+  auto energy = [&](const Vec& x) {
+    double e = 0.0;
+    for (const auto& p : pairs.candidates(x, x, dhat)) e += kKappa * contact_barrier(pairs.distance(p, x), dhat).b;
+    return e;
+  };
+  auto force = [&](const Vec& x, Evaluation& ev) { model.evaluate(0.0, x, v, kForce | kDfdq, ev); };
+  Evaluation at;
+  allocate_evaluation(model, at);
+  force(q, at);
+  const double f_max = at.force.cwiseAbs().maxCoeff();
+  ASSERT_GT(f_max, 0.0) << "no pair is active";
+  const double h = 1e-4 * dhat;
+  Eigen::MatrixXd hessian(18, 18);
+  Evaluation plus, minus;
+  allocate_evaluation(model, plus);
+  allocate_evaluation(model, minus);
+  for (int k = 0; k < 18; ++k) {
+    Vec qp = q, qm = q;
+    qp[k] += h;
+    qm[k] -= h;
+    EXPECT_NEAR(at.force[k], -(energy(qp) - energy(qm)) / (2 * h), 1e-6 * f_max) << "DoF " << k;
+    force(qp, plus);
+    force(qm, minus);
+    hessian.col(k) = -(plus.force - minus.force) / (2 * h);
+  }
+  const Eigen::MatrixXd bound = -Eigen::MatrixXd(at.dfdq), h_sym = 0.5 * (hessian + hessian.transpose());
+  EXPECT_GT((bound - h_sym).norm(), 1e-3 * h_sym.norm()) << "the bound is the Hessian itself";
+  const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(bound - h_sym).eigenvalues().minCoeff();
+  EXPECT_GE(lowest, -1e-6 * h_sym.norm());
 }
 
 // A d̂ ≥ the distance of two primitives of the initial cloth that share no
