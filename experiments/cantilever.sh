@@ -12,6 +12,7 @@
 # Results under results/cantilever/: the two runs and bending_length.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source experiments/jobs.sh  # both models at once (WL_JOBS=1: one after the other)
 scene=experiments/scenes/cantilever_ledge.toml
 out=${WL_OUT:-results/cantilever}
 python=/usr/bin/python3
@@ -26,7 +27,6 @@ case ${WL_FEM_LAW:-hinges} in
     scene=$out/scene.toml ;;
   *) echo "cantilever.sh: WL_FEM_LAW: got '$WL_FEM_LAW', expected hinges or grid_lines" >&2; exit 2 ;;
 esac
-source experiments/jobs.sh  # both models at once (WL_JOBS=1: one after the other)
 for model in yarn fem; do
   echo "== $model model" >&2
   extra=()

@@ -14,6 +14,7 @@
 # the 2-core machine, the ladder about 15 min (its runs on every core: WL_JOBS, experiments/jobs.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source experiments/jobs.sh  # the ladder's runs on every core (WL_JOBS=1: one at a time)
 tools/setup.sh
 scene=${WL_SCENE:-experiments/scenes/hanging_wind_frozen.toml}
 out=${WL_OUT:-results/error_budget}
@@ -24,8 +25,6 @@ if [ ! -f "$out/reference/summary.json" ]; then
   echo "error_budget: reference (ida, rtol 1e-8)" >&2
   build/weavelab run "$scene" --integrator ida --rtol 1e-8 --dt 1e-6 --quiet --out "$out/reference"
 fi
-# The ladder's runs on every core (experiments/jobs.sh; WL_JOBS=1: one at a time).
-source experiments/jobs.sh
 ladder_run() {  # label options...: a numerical failure is a row of the table, not the end of the experiment
   local label=$1
   shift
