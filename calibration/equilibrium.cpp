@@ -45,6 +45,7 @@ EquilibriumResult EquilibriumSolver::solve(Vec& q, const EquilibriumOptions& opt
   // Energy descent from the same start (docs/models.md §11.8), then the stiffness
   // at its end factorized for solve_free().
   q = start;
+  factored_ = false;  // Newton's last factor is of another state
   const DescentResult d = descend_energy(model_, q, held_, opt.descent_tolerance, opt.descent_max_steps);
   res.descent_steps = d.steps;
   model_.evaluate(0.0, q, zero_v_, kForce | kDfdq, eval_);
