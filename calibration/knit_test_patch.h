@@ -7,12 +7,11 @@
 // the held contacts held. The rings are those of the strip test's grips
 // (docs/models.md §11.8): contact rows 0 and `courses` and the contacts of the
 // first and last wale; the bending tests hold the next row and wale too. The
-// continuum patch is the triangle mesh through the contact grid: column κ
-// (wale κ/2, left or right contact) at u = κW/2, row ρ at v = ρC, with the
-// same rings held.
+// continuum patch is the knit's continuum (models/fem/knit_contact_mesh.h), the
+// triangle mesh through the contact grid, with the same rings held.
 #pragma once
 #include "calibration/virtual_tests.h"
-#include "models/fem/fem_mesh.h"
+#include "models/fem/knit_contact_mesh.h"
 
 namespace wl {
 
@@ -31,16 +30,13 @@ int default_knit_patch(const Scene& scene, int largest);
 // The points of a knit patch: both nodes of every stitch contact, the contact
 // grid's centre, span (2·wales − 1)W/2 along u and area span·courses·C, R(0) reported.
 TestPoints knit_contact_points(const KnitModel& model);
-// The continuum patch on the contact grid and its points (vertex κ + 2·wales·ρ).
-FemMesh knit_contact_mesh(const Scene& test_scene);
+// The continuum patch's points on the contact grid (vertex κ + 2·wales·ρ of knit_contact_mesh).
 TestPoints knit_continuum_points(const Scene& test_scene);
 
 // Default ladders on a knit patch: strains up to 10 % (a knit's loops open far beyond the
 // woven's 2 %), shear angles up to 0.4 rad, curvatures up to one radian of turning over the
 // patch's span along the bend.
 std::vector<double> default_knit_ladder(TestKind kind, const Scene& test_scene);
-// Yarn mass of the knit test patch over its contact grid's area [kg/m²].
-double knit_areal_density(const Scene& test_scene);
 
 // The knit model's static tolerance: where Newton fails, energy descent to
 // kKnitRestTolerance·k_s of the stiffest yarn (docs/models.md §11.8).

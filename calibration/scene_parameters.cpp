@@ -4,6 +4,7 @@
 
 #include "calibration/fit.h"
 #include "models/fem/fem_material.h"
+#include "models/knit/knit_model.h"
 #include "models/scene/parameter_keys.h"
 
 namespace wl {
@@ -47,6 +48,19 @@ auto* fem_field(S& scene, const std::string& key) {
   return decltype(&f.shear_N_per_m){nullptr};
 }
 
+// The knit's stiffness addressed by "knit.<[knit] key>" in a knit scene, or null.
+template <class S>
+auto* knit_field(S& scene, const std::string& key) {
+  using Field = std::conditional_t<std::is_const_v<S>, const double, double>;
+  Field* none = nullptr;
+  if (!scene.knit) return none;
+  auto& k = *scene.knit;
+  if (key == kRollStiffnessKey) return &k.roll_stiffness_N;
+  if (key == kStitchLengthStiffnessKey) return &k.stitch_length_stiffness_N;
+  if (key == kCompressionStiffnessKey) return &k.compression_stiffness_N_per_m;
+  return none;
+}
+
 [[noreturn]] void unknown(const Scene& scene, const std::string& key) {
   std::string known;
   for (const std::string& k : scene_parameter_keys(scene)) known += (known.empty() ? "" : ", ") + k;
@@ -59,6 +73,8 @@ std::vector<std::string> scene_parameter_keys(const Scene& scene) {
   std::vector<std::string> keys;
   for (const auto& [name, type] : scene.yarn_types)
     for (const char* field : kYarnFields) keys.push_back(yarn_type_key(name, field));
+  if (scene.knit)
+    for (const char* k : {kRollStiffnessKey, kStitchLengthStiffnessKey, kCompressionStiffnessKey}) keys.push_back(k);
   keys.push_back(kShearModulusKey);
   keys.push_back(kFrictionCoefficientKey);
   for (const std::string& k : fittable_parameters()) keys.push_back("fem." + k);
@@ -68,6 +84,7 @@ std::vector<std::string> scene_parameter_keys(const Scene& scene) {
 
 double scene_parameter(const Scene& scene, const std::string& key) {
   if (const double* y = yarn_field(scene, key)) return *y;
+  if (const double* k = knit_field(scene, key)) return *k;
   if (key == kShearModulusKey) return scene.contact.shear_modulus_Pa;
   if (key == kFrictionCoefficientKey) return scene.contact.friction_coefficient;
   if (const std::optional<double>* f = fem_field(scene, key)) {
@@ -80,6 +97,7 @@ double scene_parameter(const Scene& scene, const std::string& key) {
 
 void set_scene_parameter(Scene& scene, const std::string& key, double value) {
   if (double* y = yarn_field(scene, key)) *y = value;
+  else if (double* k = knit_field(scene, key)) *k = value;
   else if (key == kShearModulusKey) scene.contact.shear_modulus_Pa = value;
   else if (key == kFrictionCoefficientKey) scene.contact.friction_coefficient = value;
   else if (std::optional<double>* f = fem_field(scene, key)) *f = value;

@@ -1,6 +1,7 @@
 // The differentiable material parameters of a scene, read and written by their
 // scene keys (docs/models.md §9.1):
 //   yarn_types.<type>.density_kg_per_m | stretch_modulus_Pa | bending_modulus_Pa
+//   knit.roll_stiffness_N | stitch_length_stiffness_N | compression_stiffness_N_per_m  (knit scenes)
 //   contact.shear_modulus_Pa, contact.friction_coefficient
 //   fem.<[fem] key>  (the continuum's material, models/fem/fem_material.h)
 // Whether a model built from the scene differentiates a key is the model's

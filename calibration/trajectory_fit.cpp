@@ -17,7 +17,9 @@
 #include "calibration/scene_parameters.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_model.h"
+#include "models/knit/knit_model.h"
 #include "models/model_factory.h"
+#include "models/scene/parameter_keys.h"
 #include "models/yarn/yarn_model.h"
 
 namespace wl {
@@ -35,6 +37,17 @@ struct Observation {
   int min_seen = 0;                     // fewest points seen in a frame
 };
 
+// Whether the relaxed tile of a knit, its rest shape, depends on the parameter: the tile
+// relaxes with stretch, bending, the stitch-length penalty and contact compression (not the
+// roll, the mass or the loads; docs/models.md §11.3, §11.6).
+bool shapes_knit_rest(const std::string& key) {
+  auto ends_with = [&](const std::string& field) {
+    return key.size() > field.size() && key.compare(key.size() - field.size(), field.size(), field) == 0;
+  };
+  return key == kStitchLengthStiffnessKey || key == kCompressionStiffnessKey ||
+         (key.rfind("yarn_types.", 0) == 0 && (ends_with(kStretchModulusField) || ends_with(kBendingModulusField)));
+}
+
 // Every point seen in every frame, point k at the DoFs dof_of(k) … +2.
 Observation direct(int n, const Model& model, size_t frames, const std::function<int(int)>& dof_of) {
   std::vector<Eigen::Triplet<double>> t;
@@ -51,6 +64,11 @@ Observation observe(const Model& model, const std::string& name, const std::vect
     return TrajectoryFitError("the target has " + std::to_string(n) + " points per frame, the scene's " + name +
                               " model " + std::to_string(count) + " " + what + ": not a run of this scene");
   };
+  if (const auto* knit = dynamic_cast<const KnitModel*>(&model)) {  // a knit's contact nodes (docs/models.md §11.1)
+    const KnitGraph& g = knit->graph();
+    if (g.num_nodes() != n) throw mismatch("nodes", g.num_nodes());
+    return direct(n, model, frames.size(), [&](int k) { return g.node(k).x_dof; });
+  }
   if (name == "yarn") {
     const auto& yarn = dynamic_cast<const YarnModel&>(model);
     if (yarn.grid().num_nodes() != n) throw mismatch("nodes", yarn.grid().num_nodes());
@@ -107,6 +125,11 @@ class Simulator {
     const std::vector<std::string> keys = model->parameter_keys();
     for (const std::string& key : opt.free) {
       scene_parameter(scene, key);  // throws ParameterKeyError for an unknown key
+      if (scene.knit && opt.model == "yarn" && shapes_knit_rest(key))
+        throw TrajectoryFitError("parameter '" + key +
+                                 "': the knit's initial state, its relaxed rest shape (docs/models.md §11.3), "
+                                 "depends on it, and the forward sensitivities start from dq/dp = 0 at t = 0; "
+                                 "fit a knit's yarn density or knit.roll_stiffness_N (docs/calibration.md §8.1)");
       if (std::find(keys.begin(), keys.end(), key) == keys.end())
         throw TrajectoryFitError("parameter '" + key + "': the " + opt.model +
                                  " model of this scene does not depend on it (or it is zero)");

@@ -13,9 +13,6 @@ std::vector<std::string> model_names() { return {"yarn", "fem"}; }
 std::unique_ptr<Model> make_model(const Scene& scene, const std::string& name) {
   if (name == "yarn" && scene.knit) return std::make_unique<KnitModel>(scene);
   if (name == "yarn") return std::make_unique<YarnModel>(scene);
-  if (name == "fem" && scene.knit)
-    throw std::invalid_argument("model 'fem' does not simulate knitted cloth (" + scene.source +
-                                " has a knit pattern); use the yarn model");
   if (name == "fem") return std::make_unique<FemModel>(scene);
   throw std::invalid_argument("unknown model '" + name + "' (expected yarn or fem)");
 }

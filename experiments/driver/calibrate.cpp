@@ -172,7 +172,10 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
     // Knit patches (docs/calibration.md §8): what has no knit counterpart yet is refused.
     const std::string knit = "calibrate: " + c.scene_path.string() + " is knitted ([cloth.pattern]): ";
     if (!c.validate.empty())
-      throw std::invalid_argument(knit + "--validate: the continuum does not simulate knit scenes, expected none");
+      throw std::invalid_argument(
+          knit +
+          "--validate: not offered for knits, expected none (measure the calibrated continuum on "
+          "a knit scene with `weavelab fidelity --fem-params`, docs/calibration.md §8)");
     if (c.border_strip)
       throw std::invalid_argument(knit + "--border-strip: a woven border's half spacing, expected without it");
     if (c.grid_line_bending)
@@ -233,7 +236,15 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   if (c.fit.residuals != "range" && c.fit.residuals != "relative")
     throw std::invalid_argument("--residuals: got '" + c.fit.residuals + "', expected range or relative");
   if (c.fit.starts < 1) throw std::invalid_argument("--starts: need at least 1, got " + std::to_string(c.fit.starts));
-  (void)fem_material(p.scene);  // a bad parameter file is reported before anything runs
+  // A bad parameter file is reported before anything runs (a knit's continuum has no material
+  // without one: only the file is read, docs/models.md §11.9).
+  if (!p.scene.knit) {
+    (void)fem_material(p.scene);
+  } else if (!p.scene.fem.parameter_file.empty()) {
+    FemMaterial law;
+    law.shear_knots_rad = p.scene.fem.shear_knots_rad;
+    (void)read_fem_parameter_file(p.scene.fem.parameter_file, law);
+  }
   for (const auto& v : c.validate) {
     p.validation_scenes.push_back(at_resolution(load_scene(v.string()), c.resolution));
     p.validation_texts.push_back(read_text_file(v));
@@ -426,8 +437,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
       {{"source_scene", c.scene_path.string()},
        {"source_scene_hash", text_hash(p.scene_text)},
        {"git_revision", git_revision()},
-       {"patch", std::to_string(patch) + " x " + std::to_string(patch) +
-                     (p.scene.knit ? " courses x wales (knit; the continuum does not simulate knit scenes)" : "")},
+       {"patch",
+        std::to_string(patch) + " x " + std::to_string(patch) + (p.scene.knit ? " courses x wales (knit)" : "")},
        {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene" : "false"},
        {"grid_line_bending",
         c.grid_line_bending ? "fitted with [fem] grid_line_bending = true: set it in the scene" : "false"},

@@ -15,6 +15,7 @@
 #include "experiments/output/csv_table.h"
 #include "experiments/output/json_writer.h"
 #include "models/fem/fem_model.h"
+#include "models/fem/knit_contact_mesh.h"
 
 namespace wl {
 namespace {
@@ -24,6 +25,36 @@ const DataArray& point_array(const Frame& f, const std::string& name) {
     if (a.name == name) return a;
   throw std::logic_error("fidelity: frame without point data '" + name + "'");
 }
+
+// The points a ladder compares: a woven cloth's crossings at their current material coordinates
+// (u, v); a knit's stitch contacts, each the midpoint of its two nodes, at its material point on
+// the contact grid (docs/models.md §11.9).
+class ComparedPoints {
+ public:
+  explicit ComparedPoints(const Scene& s) {
+    if (s.knit) contacts_ = knit_grid_contacts(s);
+  }
+  FramePoints points(const Frame& f) const {
+    if (contacts_.empty()) return f.points;
+    FramePoints x(contacts_.size(), 3);
+    for (size_t n = 0; n < contacts_.size(); ++n)
+      x.row(n) = 0.5 * (f.points.row(contacts_[n].a) + f.points.row(contacts_[n].b));
+    return x;
+  }
+  std::vector<Vec2> uv(const Frame& f) const {
+    std::vector<Vec2> uv;
+    if (!contacts_.empty()) {
+      for (const KnitGridContact& c : contacts_) uv.push_back(c.uv);
+      return uv;
+    }
+    const DataArray &u = point_array(f, "u"), &v = point_array(f, "v");
+    for (Eigen::Index n = 0; n < f.points.rows(); ++n) uv.emplace_back(u.values[n], v.values[n]);
+    return uv;
+  }
+
+ private:
+  std::vector<KnitGridContact> contacts_;
+};
 
 // Distances of one run to the reference, accumulated frame by frame.
 class DistanceTally {
@@ -176,7 +207,12 @@ std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vecto
 FidelityPlan plan_fidelity(const FidelityConfig& c) {
   FidelityPlan p;
   const Scene& s = c.scene;
-  p.cloth_size_m = (std::max(s.wefts, s.warps) - 1) * s.spacing_m;
+  if (s.knit) {
+    const KnitContactGrid g = knit_contact_grid(s);
+    p.cloth_size_m = std::max(g.span_u(), g.span_v());
+  } else {
+    p.cloth_size_m = (std::max(s.wefts, s.warps) - 1) * s.spacing_m;
+  }
   p.tolerance_m = c.tolerance_m.value_or(0.01 * p.cloth_size_m);
   if (!(p.tolerance_m > 0) || !std::isfinite(p.tolerance_m))
     throw std::invalid_argument("--tolerance: got " + std::to_string(p.tolerance_m) + ", expected a distance > 0 [m]");
@@ -240,6 +276,7 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   // 1. The reference: its crossings, material coordinates and energy at every
   // frame, run here or read from the file of a --reference-only run.
   ReferenceFrames ref;
+  const ComparedPoints compared(c.scene);
   RecordOptions rec;
   rec.progress = c.progress;
   rec.energies = true;
@@ -254,11 +291,8 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
                    c.reference_from->string().c_str());
   } else {
     rec.on_frame = [&](const Frame& f) {
-      const DataArray &u = point_array(f, "u"), &v = point_array(f, "v");
-      std::vector<Vec2> uv;
-      for (Eigen::Index n = 0; n < f.points.rows(); ++n) uv.emplace_back(u.values[n], v.values[n]);
-      ref.x.push_back(f.points);
-      ref.uv.push_back(std::move(uv));
+      ref.x.push_back(compared.points(f));
+      ref.uv.push_back(compared.uv(f));
     };
     if (c.progress) std::fprintf(stderr, "fidelity: reference %s\n", p.reference.name.c_str());
     const Scene& rs = p.reference.variant.scene;
@@ -299,7 +333,7 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
     vr.on_frame = [&](const Frame& f) {
       if (k >= ref.x.size()) return;
       tally.add_frame(continuum ? surface_distances(*geometry, f.points, ref.x[k], ref.uv[k])
-                                : crossing_distances(f.points, ref.x[k]));
+                                : crossing_distances(compared.points(f), ref.x[k]));
       ++k;
     };
     if (c.progress) std::fprintf(stderr, "fidelity: %s (%s)\n", pv.name.c_str(), pv.variant.model.c_str());

@@ -1,6 +1,7 @@
 // `weavelab fidelity`: a scene run at every rung of the fidelity ladder
 // (fidelity_variants.h) and each rung measured against a yarn-level reference
-// at the reference's crossings (docs/design.md §7.5). Writes into the output folder
+// at the reference's crossings (a knit: its stitch contacts, docs/models.md §11.9)
+// (docs/design.md §7.5). Writes into the output folder
 //   fidelity.csv   one row per variant: DoFs, steps, CPU and wall time, RMS,
 //                  worst-frame RMS and max distance, energy difference, the
 //                  run's estimated time error (docs/models.md §7.8), Pareto front
@@ -52,7 +53,7 @@ struct FidelityPlan {
   std::vector<PlannedVariant> variants;                       // in ladder order, without the reference
   std::vector<std::pair<std::string, std::string>> left_out;  // variant, why
   std::string calibration;                                    // where the calibrated parameters come from ("" = none)
-  double cloth_size_m = 0;                                    // (max(wefts, warps) − 1)·L
+  double cloth_size_m = 0;  // (max(wefts, warps) − 1)·L; a knit: the contact grid's larger span
   double tolerance_m = 0;
 };
 

@@ -5,12 +5,14 @@
 //   no_parallel_contact  yarn, [terms] parallel_contact = false  (docs/models.md §3.5)
 //   linear_shear         yarn, Gong's shear lock → Cirio's linear shear (docs/models.md §3.4)
 //   frozen_sliding       yarn, cloth.sliding = false: 3 DoFs per node (docs/models.md §2.1)
-//   fem_s1, fem_s2, fem_s4   continuum on every 1st, 2nd, 4th crossing, calibrated parameters (§6)
+//   fem_s1, fem_s2, fem_s3, fem_s4   continuum on every 1st, 2nd, 3rd, 4th crossing, calibrated parameters (§6)
 //   fem_first_guess      continuum on every crossing, parameters derived from the yarns (§6.7)
 // and the time rungs, the full yarn model at other time resolutions (§7.11):
 //   scene_step           the scene's own integrator and step (1 ms, be-linear, in the published scenes)
 //   half_step, quarter_step   the scene's integrator at 1/2 and 1/4 of its step
 //   sdirk2_rtol_1e-3     sdirk2 under error control at rtol 1e-3
+// On a knit the continuum lies on the contact grid (docs/models.md §11.9): fem_sK where K divides its
+// spacings and hits every pin and handle, fem_first_guess never (no first guess from the yarn).
 // The model rungs run at the comparison's resolution (experiments/driver/resolution.h),
 // the time rungs at their own.
 #pragma once

@@ -11,6 +11,8 @@
 
 #include <toml++/toml.h>
 
+#include "models/fem/knit_contact_mesh.h"
+
 namespace wl {
 namespace {
 
@@ -34,6 +36,17 @@ void add_knots(std::vector<FemParameterKey>& keys, std::integer_sequence<int, I.
   throw FemParameterError(file + ":" + std::to_string(line) + ": key '" + key + "': got " + value + ", expected " +
                           expected);
 }
+
+// The stiffnesses a knit's continuum must be given (docs/models.md §11.9).
+struct CalibratedKey {
+  const char* name;
+  double FemMaterial::*field;
+};
+constexpr CalibratedKey kKnitCalibratedKeys[] = {{"warp_stretch_N_per_m", &FemMaterial::warp_stretch_N_per_m},
+                                                 {"weft_stretch_N_per_m", &FemMaterial::weft_stretch_N_per_m},
+                                                 {"shear_N_per_m", &FemMaterial::shear_N_per_m},
+                                                 {"warp_bending_N_m", &FemMaterial::warp_bending_N_m},
+                                                 {"weft_bending_N_m", &FemMaterial::weft_bending_N_m}};
 
 }  // namespace
 
@@ -160,6 +173,8 @@ void write_fem_parameter_file(const std::string& path, const FemMaterial& m,
 FemMaterial fem_material(const Scene& s) {
   FemMaterial m = default_fem_material(s);
   const FemSettings& f = s.fem;
+  if (s.knit)  // nothing derives a knit's membrane stiffnesses from its yarn (docs/models.md §11.9)
+    for (const CalibratedKey& k : kKnitCalibratedKeys) m.*k.field = 0.0;
   m.shear_knots_rad = f.shear_knots_rad;  // the law first: the parameter file's knot values must fit it
   if (!f.parameter_file.empty()) m = read_fem_parameter_file(f.parameter_file, m);
   auto set = [](double& out, const std::optional<double>& v) {
@@ -177,6 +192,20 @@ FemMaterial fem_material(const Scene& s) {
   for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) set(m.shear_knot_N_per_m[i], f.shear_knot_N_per_m[i]);
   for (size_t i = 0; i < m.shear_knots_rad.size(); ++i)  // an absent knot value: the stiffness at 0
     if (m.shear_knot_N_per_m[i] <= 0) m.shear_knot_N_per_m[i] = m.shear_N_per_m;
+  if (s.knit) {
+    // The yarn level's mass per area, whatever patch a parameter file was calibrated on.
+    if (!f.areal_density_kg_per_m2) m.areal_density_kg_per_m2 = knit_areal_density(s);
+    for (const CalibratedKey& k : kKnitCalibratedKeys)
+      if (!(m.*k.field > 0)) {
+        auto line = s.key_lines.find("fem");  // else the [cloth] table that makes it a knit
+        if (line == s.key_lines.end()) line = s.key_lines.find("cloth");
+        throw SceneError(
+            s.source, line != s.key_lines.end() ? line->second : 1, std::string("fem.") + k.name, "none",
+            "a calibrated value > 0: a knit's continuum takes its stiffnesses from `weavelab calibrate` "
+            "(--fem-params FILE or [fem] parameter_file) or from [fem]; nothing derives them from the yarn "
+            "(docs/models.md §11.9)");
+      }
+  }
   return m;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "models/fem/deformation_gradient.h"
+#include "models/fem/knit_contact_mesh.h"
 
 namespace wl {
 
@@ -42,6 +43,20 @@ FemMesh build_grid_mesh(const Scene& s) {
       m.uv.emplace_back(u, v);
       m.x.push_back(pose_position(s, u, v));
     }
+  add_grid_triangles(m);
+  return m;
+}
+
+bool boundary_on_lattice(const Scene& s, int k) {
+  for (const NodeRef& n : s.pins)
+    if (n.i % k != 0 || n.j % k != 0) return false;
+  for (const Handle& h : s.handles)
+    if (h.node.i % k != 0 || h.node.j % k != 0) return false;
+  return true;
+}
+
+void add_grid_triangles(FemMesh& m) {
+  const int na = static_cast<int>(m.grid_i.size()), nb = static_cast<int>(m.grid_j.size());
   for (int b = 0; b + 1 < nb; ++b)
     for (int a = 0; a + 1 < na; ++a) {
       const int v00 = m.grid_vertex(a, b), v10 = m.grid_vertex(a + 1, b), v11 = m.grid_vertex(a + 1, b + 1),
@@ -49,7 +64,6 @@ FemMesh build_grid_mesh(const Scene& s) {
       m.triangles.push_back({v00, v10, v11});
       m.triangles.push_back({v00, v11, v01});
     }
-  return m;
 }
 
 // ---------------------------------------------------------------------------
@@ -263,6 +277,7 @@ FemMesh read_vtu_mesh(const std::string& path) {
 }
 
 FemMesh make_fem_mesh(const Scene& scene) {
+  if (scene.knit) return knit_contact_mesh(scene);
   return scene.fem.mesh_file.empty() ? build_grid_mesh(scene) : read_vtu_mesh(scene.fem.mesh_file);
 }
 

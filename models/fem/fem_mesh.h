@@ -42,7 +42,8 @@ struct FemMesh {
   std::vector<Vec2> uv;                       // rest material coordinates [m]
   std::vector<Vec3> x;                        // initial positions [m]
   std::vector<std::array<int, 3>> triangles;  // CCW in UV
-  // Grid meshes only: crossing index of each vertex column / row.
+  // Grid meshes only: crossing index of each vertex column / row (a knit's: contact column / row,
+  // knit_contact_mesh.h).
   std::vector<int> grid_i, grid_j;
 
   int num_vertices() const { return static_cast<int>(uv.size()); }
@@ -62,9 +63,14 @@ struct Hinge {
 // Position of material point (u, v) by the scene's pose (see above).
 Vec3 pose_position(const Scene& scene, double u, double v);
 FemMesh build_grid_mesh(const Scene& scene);
+// Splits every cell of a grid mesh's vertices (grid_i × grid_j, grid_vertex) along its diagonal
+// (a, b)-(a+1, b+1) into the two CCW triangles above.
+void add_grid_triangles(FemMesh& mesh);
+// Whether every pin and handle of the scene lies on the lattice of stride k (i, j multiples of k).
+bool boundary_on_lattice(const Scene& scene, int k);
 // Throws FemMeshError (file, line, what is missing or wrong).
 FemMesh read_vtu_mesh(const std::string& path);
-// scene.fem.mesh_file if set, else the grid mesh.
+// A knit scene's contact grid (knit_contact_mesh.h); else scene.fem.mesh_file if set, else the grid mesh.
 FemMesh make_fem_mesh(const Scene& scene);
 // Interior edges (shared by exactly two triangles). Throws FemMeshError for an
 // edge shared by more than two triangles or by two with opposite orientation.

@@ -10,6 +10,7 @@
 #include "models/common/wind.h"
 #include "models/common/yarn_damper.h"
 #include "models/fem/deformation_gradient.h"
+#include "models/fem/knit_contact_mesh.h"
 #include "models/fem/terms/border_stretch.h"
 #include "models/fem/terms/grid_line_bending.h"
 #include "models/fem/terms/hinge_bending.h"
@@ -51,7 +52,20 @@ std::vector<double> yarn_node_masses(const Scene& s) {
   return m;
 }
 
-FemModel::FemModel(const Scene& scene) : FemModel(scene, make_fem_mesh(scene), fem_material(scene)) {}
+// A knit scene's continuum takes no yarn damper: its coefficient per edge counts the yarns along a
+// crossing grid's edges (docs/models.md §3.12); a knit's yarns follow its loops, not the contact
+// grid's edges (§11.9). The calibration's static patches (the other constructor) feel no damping.
+static const Scene& without_knit_damping(const Scene& s) {
+  if (!s.knit || !(s.yarn_viscosity_Pa_s > 0)) return s;
+  const auto line = s.key_lines.find("damping.yarn_viscosity_Pa_s");
+  throw SceneError(s.source, line != s.key_lines.end() ? line->second : 1, "damping.yarn_viscosity_Pa_s",
+                   format(s.yarn_viscosity_Pa_s),
+                   "0 for the continuum of a knit (no yarn runs along the contact grid's edges to damp; "
+                   "docs/models.md §11.9)");
+}
+
+FemModel::FemModel(const Scene& scene)
+    : FemModel(without_knit_damping(scene), make_fem_mesh(scene), fem_material(scene)) {}
 
 FemModel::FemModel(const Scene& scene, FemMesh mesh, const FemMaterial& material)
     : scene_(scene), mesh_(std::move(mesh)), material_(material) {
@@ -271,13 +285,15 @@ void FemModel::set_material(const FemMaterial& material) {
 }
 
 int FemModel::vertex_of_node(const NodeRef& node) const {
-  const Vec2 uv(node.i * scene_.spacing_m, node.j * scene_.spacing_m);
+  const Vec2 uv = scene_.knit ? knit_contact_material(knit_contact_grid(scene_), node)
+                              : Vec2(node.i * scene_.spacing_m, node.j * scene_.spacing_m);
   const int v = nearest_vertex(mesh_, uv);
   const double d = (mesh_.uv[v] - uv).norm();
   if (mesh_.is_grid() ? d > 1e-9 * scene_.spacing_m : d > max_uv_edge_) {
     std::ostringstream s;
-    s << mesh_.source << ": crossing (" << node.i << ", " << node.j << ") at material (" << uv.x() << ", " << uv.y()
-      << ") m has no vertex: nearest is vertex " << v << " at distance " << d << " m"
+    s << mesh_.source << ": " << (scene_.knit ? "contact" : "crossing") << " (" << node.i << ", " << node.j
+      << ") at material (" << uv.x() << ", " << uv.y() << ") m has no vertex: nearest is vertex " << v
+      << " at distance " << d << " m"
       << (mesh_.is_grid() ? " (pins and handles must lie on the fem.stride lattice)" : " (outside the mesh)");
     throw std::invalid_argument(s.str());
   }
@@ -356,10 +372,10 @@ Frame FemModel::obstacle_frame(double t) const {
 std::map<std::string, std::string> FemModel::describe() const {
   std::map<std::string, std::string> m;
   m["model"] = "fem";
-  m["mesh"] = mesh_.is_grid()
-                  ? "grid " + std::to_string(mesh_.grid_i.size()) + " x " + std::to_string(mesh_.grid_j.size()) +
-                        " vertices (stride " + std::to_string(scene_.fem.stride) + ")"
-                  : mesh_.source;
+  m["mesh"] = mesh_.is_grid() ? mesh_.source + " " + std::to_string(mesh_.grid_i.size()) + " x " +
+                                    std::to_string(mesh_.grid_j.size()) + " vertices (stride " +
+                                    std::to_string(scene_.fem.stride) + ")"
+                              : mesh_.source;
   m["vertices"] = std::to_string(mesh_.num_vertices());
   m["triangles"] = std::to_string(mesh_.num_triangles());
   m["hinges"] = std::to_string(hinges_.size());

@@ -21,6 +21,10 @@ KnitLayout knit_layout(const Scene& scene, bool tile);
 
 // The parameter key of the contact compression's stiffness κ (docs/models.md §11.6).
 inline constexpr const char* kCompressionStiffnessKey = "knit.compression_stiffness_N_per_m";
+// The parameter key of the stitch roll's stiffness k_t (docs/models.md §11.4).
+inline constexpr const char* kRollStiffnessKey = "knit.roll_stiffness_N";
+// The parameter key of the stitch-length penalty's stiffness k_l (docs/models.md §11.4).
+inline constexpr const char* kStitchLengthStiffnessKey = "knit.stitch_length_stiffness_N";
 // Pieces of yarn closer than this in the generated geometry are kept apart by
 // the contact compression (docs/models.md §11.6): the contact distance 2R plus
 // half the smaller loop spacing.

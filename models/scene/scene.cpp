@@ -27,8 +27,10 @@
 //     "default" is YarnType{} of scene.h unless defined here.
 //   [knit]                   knit scenes only (docs/models.md §11)
 //     roll_stiffness_N, stitch_length_stiffness_N, compression_stiffness_N_per_m   ≥ 0
-//   A knit scene takes no [wind], [fem], [[obstacles]] or [self_contact] (not supported yet); its [[pins]] and
+//   A knit scene takes no [wind], [[obstacles]] or [self_contact] (not supported yet); its [[pins]] and
 //   [[handles]] name stitch contacts: node = [i, j], 0 ≤ i ≤ courses (contact row), 0 ≤ j < 2·wales.
+//   Its [fem] (the continuum on the contact grid, docs/models.md §11.9): stride dividing 2·wales − 1 and
+//   courses; no mesh_file, border_strip, grid_line_bending, yarn_node_mass or areal_density_kg_per_m2.
 //   [contact]
 //     shear_model, friction_model      "gong" | "cirio"
 //     shear_modulus_Pa, friction_coefficient, friction_stiffness_N_per_m,
@@ -316,8 +318,26 @@ void read_fem(TableReader& top, Scene& s) {
   auto f = top.subtable("fem");
   if (!f) return;
   FemSettings& fem = s.fem;
+  s.key_lines["fem"] = f->line();
   f->read_int("stride", fem.stride, "an integer ≥ 1", [](long long x) { return x >= 1; });
-  if ((s.wefts - 1) % fem.stride != 0 || (s.warps - 1) % fem.stride != 0)
+  if (s.knit) {
+    // The continuum of a knit lies on its contact grid (docs/models.md §11.9): 2·wales columns, courses + 1 rows.
+    const int columns = 2 * s.knit->wales - 1, rows = s.knit->courses;
+    if (columns % fem.stride != 0 || rows % fem.stride != 0)
+      f->fail_key("stride",
+                  "an integer ≥ 1 dividing the knit's contact grid: 2·cloth.pattern.wales − 1" + eq(columns) +
+                      " and cloth.pattern.courses" + eq(rows),
+                  std::to_string(fem.stride));
+    // What has no knit counterpart: a mesh file, the woven border strip and grid-line widths (one
+    // crossing spacing), the woven node masses, and a mass per area other than the yarn level's.
+    for (const char* key :
+         {"mesh_file", "border_strip", "grid_line_bending", "yarn_node_mass", "areal_density_kg_per_m2"})
+      if (const toml::node* n = f->table().get(key))
+        f->fail_at(*n, key,
+                   "no " + std::string(key) +
+                       " in a knit scene (its continuum is the contact grid's mesh with the yarn level's mass per "
+                       "area, docs/models.md §11.9)");
+  } else if ((s.wefts - 1) % fem.stride != 0 || (s.warps - 1) % fem.stride != 0)
     f->fail_key("stride",
                 "an integer ≥ 1 dividing cloth.wefts − 1" + eq(s.wefts - 1) + " and cloth.warps − 1" + eq(s.warps - 1),
                 std::to_string(fem.stride));
@@ -431,7 +451,7 @@ void read_knit(TableReader& top, Scene& s) {
     k->finish();
   }
   if (!s.knit) return;
-  for (const char* table : {"wind", "fem", "obstacles", "self_contact"})
+  for (const char* table : {"wind", "obstacles", "self_contact"})
     if (const toml::node* n = top.table().get(table))
       top.source().fail(line_of(*n), table, "[" + std::string(table) + "]",
                         "no [" + std::string(table) + "] in a knit scene (not supported for knits yet)");
@@ -451,6 +471,8 @@ void read_loads(TableReader& top, Scene& s) {
   if (auto d = top.subtable("damping")) {
     d->read_number("yarn_viscosity_Pa_s", s.yarn_viscosity_Pa_s, "a finite number ≥ 0 (Pa·s)",
                    [](double x) { return std::isfinite(x) && x >= 0.0; });
+    if (const toml::node* n = d->table().get("yarn_viscosity_Pa_s"))
+      s.key_lines[d->key_path("yarn_viscosity_Pa_s")] = line_of(*n);
     d->finish();
   }
 }

@@ -38,7 +38,7 @@ class FidelityCli : public ::testing::Test {
 };
 
 TEST_F(FidelityCli, UnknownVariantIsRefused) {
-  expect_refused("--variants no_friction,fem_s3", {"--variants", "unknown variant 'fem_s3'", "fem_s4"});
+  expect_refused("--variants no_friction,fem_s5", {"--variants", "unknown variant 'fem_s5'", "fem_s4"});
 }
 
 TEST_F(FidelityCli, ToleranceMustBePositive) {
@@ -111,3 +111,42 @@ TEST_F(FidelityCli, WritesTheLadderAndNamesTheCheapestVariant) {
 }
 
 }  // namespace
+
+// A knit's ladder (docs/models.md §11.9): the calibrated continuum on its contact grid at the
+// strides that divide it (9 column and 6 row spacings: 1 and 3), measured at the stitch contacts.
+class KnitFidelityCli : public FidelityCli {
+ protected:
+  void SetUp() override {
+    scene_ = dir_ / "knit.toml";
+    std::ofstream(scene_) << wl::test::hanging_knit_toml(6, 5);
+    params_ = dir_ / "params.toml";
+    std::ofstream(params_) << "warp_stretch_N_per_m = 40.0\nweft_stretch_N_per_m = 50.0\nshear_N_per_m = 2.0\n"
+                              "warp_bending_N_m = 1e-6\nweft_bending_N_m = 2e-6\n";
+  }
+  std::string with_params() const { return "--fem-params '" + params_.string() + "' "; }
+  fs::path params_;
+};
+
+TEST_F(KnitFidelityCli, RefusesTheRungsItCannotRun) {
+  expect_refused("--variants fem_s1", {"fem_s1", "no calibrated parameters"});
+  expect_refused(with_params() + "--variants fem_s2", {"fem_s2", "knit's contact grid", "2·wales − 1"});
+  expect_refused(with_params() + "--variants fem_first_guess", {"fem_first_guess", "nothing derives"});
+  const Result r = fidelity(with_params() + "--resolution scene --list-variants");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const char* rung : {"fem_s1\n", "fem_s3\n"}) EXPECT_NE(r.output.find(rung), std::string::npos) << r.output;
+  for (const char* rung : {"fem_s2\n", "fem_s4\n", "fem_first_guess\n", "no_friction\n"})
+    EXPECT_EQ(r.output.find(rung), std::string::npos) << rung << " in: " << r.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
+TEST_F(KnitFidelityCli, MeasuresTheContinuumAtTheStitchContacts) {
+  const Result r = fidelity(with_params() + "--resolution scene --variants fem_s1,fem_s3 --tolerance 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::stringstream csv;
+  csv << std::ifstream(out() / "fidelity.csv").rdbuf();
+  for (const char* row : {"\nfull,yarn,", "\nfem_s1,fem,", "\nfem_s3,fem,"})
+    EXPECT_NE(csv.str().find(row), std::string::npos) << row << " in: " << csv.str();
+  std::stringstream json;
+  json << std::ifstream(out() / "fidelity.json").rdbuf();
+  EXPECT_NE(json.str().find("\"compared_fraction\": 1"), std::string::npos) << json.str();
+}

@@ -131,5 +131,46 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A knit hung from two contacts (docs/calibration.md §8.1): the parameters its relaxed rest shape
+// depends on are refused, naming the parameter and why; the roll stiffness of its own run is
+// found again from a start 50 % off.
+class KnitFitCli : public FitCli {
+ protected:
+  void SetUp() override {
+    scene_ = dir_ / "knit.toml";
+    std::ofstream(scene_) << test::hanging_knit_toml(4, 3);
+    const auto r =
+        cli("run " + test::shell_quote(scene_.string()) + " --quiet --out " + test::shell_quote(target().string()));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+};
+
+TEST_F(KnitFitCli, RefusesWhatShapesTheRestAndWritesNothing) {
+  const fs::path out = dir_ / "never";
+  for (const char* key : {"yarn_types.default.stretch_modulus_Pa", "yarn_types.default.bending_modulus_Pa",
+                          "knit.stitch_length_stiffness_N", "knit.compression_stiffness_N_per_m"}) {
+    const auto r = fit(std::string("--free ") + key, out);
+    EXPECT_EQ(r.exit_code, 2) << key << "\n" << r.output;
+    EXPECT_NE(r.output.find(std::string("parameter '") + key + "'"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("relaxed rest shape"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << key;
+  }
+  const auto r = fit("--free knit.roll_stiffness_N --model fem", out);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(KnitFitCli, RecoversTheRollStiffnessOfItsOwnRun) {
+  const fs::path out = dir_ / "fit";
+  const auto r = fit("--free knit.roll_stiffness_N --start knit.roll_stiffness_N=1.5e-5", out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::stringstream json;
+  json << std::ifstream(out / "fit.json").rdbuf();
+  const std::string key = "\"value\": ";
+  const size_t at = json.str().find(key, json.str().find("\"key\": \"knit.roll_stiffness_N\""));
+  ASSERT_NE(at, std::string::npos) << json.str();
+  EXPECT_NEAR(std::stod(json.str().substr(at + key.size())), 1e-5, 1e-9);
+}
+
 }  // namespace
 }  // namespace wl

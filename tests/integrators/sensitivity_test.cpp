@@ -167,6 +167,18 @@ TEST(ForwardSensitivity, FrictionCoefficientWhileSlidingUnderLoad) {
   std::printf("[ sens ] sliding under load: mu %.2e\n", mu);
 }
 
+// A knit (docs/models.md §11) hung from two contacts, 4 steps: the parameters its rest shape
+// does not depend on (the yarn's density, the stitch roll's k_t; docs/calibration.md §8.1) have
+// exact sensitivities of the discrete trajectory, with sliding and without.
+TEST(ForwardSensitivity, KnitDensityAndRollStiffnessAreExact) {
+  Scene s = parse_scene(test::hanging_knit_toml(4, 3), "knit.toml");
+  s.sliding = true;
+  const std::vector<std::string> keys = {yarn_type_key("default", kDensityField), "knit.roll_stiffness_N"};
+  EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", keys, 1e-3, 1e-5, {1e-6, 1e-6}), 1e-6);
+  s.sliding = false;
+  EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", keys, 1e-3, 1e-5, {1e-6, 1e-6}), 1e-6);
+}
+
 // be-linear holds K₀ and D₀ when differentiating its step: an O(h) error that
 // halves with the step (docs/models.md §9.2).
 TEST(ForwardSensitivity, BeLinearErrorIsFirstOrderInTheStep) {

@@ -196,8 +196,16 @@ TEST(KnitCompression, StiffnessKey) {
   }
 }
 
-TEST(KnitModel, TheFemModelRefusesKnits) {
-  EXPECT_THROW(make_model(knit_scene("stockinette", 3, 3), "fem"), std::invalid_argument);
+// A knit's continuum takes its stiffnesses from a calibration, never from the yarn
+// (docs/models.md §11.9): without them the fem model is refused, naming the first key.
+TEST(KnitModel, TheFemModelOfAKnitNeedsCalibratedStiffnesses) {
+  try {
+    make_model(knit_scene("stockinette", 3, 3), "fem");
+    ADD_FAILURE() << "a knit's continuum without stiffnesses should be refused";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key, "fem.warp_stretch_N_per_m");
+    EXPECT_NE(e.expected.find("calibrate"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -52,6 +52,22 @@ TEST(StitchRollTerm, ForcesAndJacobiansMatchFiniteDifferences) {
       << "the test states should put ψ on both sides of 0";
 }
 
+// ∂f/∂k_t of the roll (a force proportional to k_t, docs/models.md §11.4) against differences in k_t.
+TEST(StitchRollTerm, ParameterDerivativeMatchesFiniteDifferences) {
+  auto make = [](double kt) {
+    auto term = std::make_unique<StitchRollTerm>();
+    term->add(identity12(), kt, 1e-3, 0.3);
+    term->tag_last("knit.roll_stiffness_N", kt);
+    return std::unique_ptr<Term>(std::move(term));
+  };
+  const std::vector<double> zero(12, 0.0);
+  test::FdOptions opt;
+  opt.floor = 1e-14;
+  const auto r = test::check_parameter_derivative(make, 0.02, 0, 0,
+                                                  {{stitch_state(0.0), zero}, {stitch_state(-0.7e-3), zero}}, opt);
+  EXPECT_TRUE(r.ok) << r.detail;
+}
+
 TEST(StitchRollTerm, NoForceAtTheRestAngleAndRotationInvariant) {
   const std::vector<double> q = stitch_state(0.0);
   StitchRollTerm t;

@@ -16,4 +16,18 @@ inline std::string hanging_cloth_toml(int n, double duration_s, const std::strin
          (integrator.empty() ? "" : "integrator = \"" + integrator + "\"\n");
 }
 
+// A stockinette of `courses` × `wales` (W = 2 mm, R = 0.2 mm, sliding frozen) hung upright under
+// gravity from the two top corner contacts of its cast-on row by handles of 100 N/m, 4 ms of 1 ms
+// be-newton steps, frames every 2 ms (docs/models.md §11).
+inline std::string hanging_knit_toml(int courses, int wales) {
+  return "[cloth]\nspacing_m = 2e-3\nradius_m = 2e-4\nsliding = false\n[cloth.pattern]\nkind = \"stockinette\"\n"
+         "courses = " +
+         std::to_string(courses) + "\nwales = " + std::to_string(wales) +
+         "\n[knit]\nroll_stiffness_N = 1e-5\n[pose]\nkind = \"upright\"\n[[handles]]\nnode = [0, 0]\n"
+         "stiffness_N_per_m = 100.0\n[[handles]]\nnode = [0, " +
+         std::to_string(2 * wales - 1) +
+         "]\nstiffness_N_per_m = 100.0\n[time]\nduration_s = 0.004\noutput_interval_s = 0.002\n"
+         "integrator = \"be-newton\"\n";
+}
+
 }  // namespace wl::test
