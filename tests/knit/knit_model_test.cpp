@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "calibration/scene_parameters.h"
 #include "models/knit/knit_rest_shape.h"
 #include "models/model_factory.h"
 #include "tests/support/fd_check.h"
@@ -194,6 +195,23 @@ TEST(KnitCompression, StiffnessKey) {
     EXPECT_EQ(e.line, 6);
     EXPECT_EQ(e.key, "knit.compression_stiffness_N_per_m");
   }
+}
+
+// What `fit` refuses on a knit (docs/calibration.md §8.1) is what its initial state, the relaxed
+// rest shape, depends on: a 1 % change of each refused key moves q0, of each fitted key not at all.
+TEST(KnitModel, TheRestShapeDependsOnTheKeysTheFitRefuses) {
+  const Scene s = knit_scene("stockinette", 3, 3);
+  const Vec q0 = KnitModel(s).initial_q();
+  auto moved = [&](const std::string& key) {
+    Scene t = s;
+    set_scene_parameter(t, key, 1.01 * scene_parameter(s, key));
+    return (KnitModel(t).initial_q() - q0).norm();
+  };
+  for (const char* key : {"yarn_types.default.stretch_modulus_Pa", "yarn_types.default.bending_modulus_Pa",
+                          "knit.stitch_length_stiffness_N", "knit.compression_stiffness_N_per_m"})
+    EXPECT_GT(moved(key), 1e-9) << key;
+  for (const char* key : {"yarn_types.default.density_kg_per_m", "knit.roll_stiffness_N"})
+    EXPECT_EQ(moved(key), 0.0) << key;
 }
 
 // A knit's continuum takes its stiffnesses from a calibration, never from the yarn
