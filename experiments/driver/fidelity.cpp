@@ -35,11 +35,7 @@ class ComparedPoints {
     if (s.knit) contacts_ = knit_grid_contacts(s);
   }
   FramePoints points(const Frame& f) const {
-    if (contacts_.empty()) return f.points;
-    FramePoints x(contacts_.size(), 3);
-    for (size_t n = 0; n < contacts_.size(); ++n)
-      x.row(n) = 0.5 * (f.points.row(contacts_[n].a) + f.points.row(contacts_[n].b));
-    return x;
+    return contacts_.empty() ? f.points : knit_contact_midpoints(contacts_, f.points);
   }
   std::vector<Vec2> uv(const Frame& f) const {
     std::vector<Vec2> uv;

@@ -13,6 +13,7 @@
 #include "experiments/output/run_reader.h"
 #include "models/common/self_contact.h"
 #include "models/fem/fem_material.h"
+#include "models/fem/knit_contact_mesh.h"
 
 namespace wl {
 namespace {
@@ -92,6 +93,17 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
     t.points = f.points;
     for (size_t i = 0; i < f.u.size(); ++i) t.uv.emplace_back(f.u[i], f.v[i]);
     p.target.push_back(std::move(t));
+  }
+  // A yarn-level knit run observed by the knit's continuum: its stitch contacts, each the midpoint
+  // of its two nodes at the contact's material point (docs/models.md §11.9).
+  if (p.scene.knit && c.fit.model == "fem" && !p.target.empty()) {
+    const std::vector<KnitGridContact> contacts = knit_grid_contacts(p.scene);
+    if (p.target.front().points.rows() == 2 * static_cast<Eigen::Index>(contacts.size()))
+      for (TargetFrame& t : p.target) {
+        t.points = knit_contact_midpoints(contacts, t.points);
+        t.uv.clear();
+        for (const KnitGridContact& k : contacts) t.uv.push_back(k.uv);
+      }
   }
   if (c.frames > static_cast<int>(p.target.size()))
     throw TrajectoryFitError("--frames: got " + std::to_string(c.frames) + ", the target " + c.target_dir.string() +

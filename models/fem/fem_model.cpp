@@ -384,7 +384,8 @@ std::map<std::string, std::string> FemModel::describe() const {
   m["terms"] = term_counts();
   m["matrix_nonzeros"] = std::to_string(pattern().nonZeros());
   m["mass"] = scene_.fem.yarn_node_mass ? "lumped in the proportions of the yarn level's node masses"
-                                        : "lumped, a third of each triangle's per vertex";
+              : scene_.knit ? "the knit's yarn mass over its contact grid, a third of each triangle's per vertex"
+                            : "lumped, a third of each triangle's per vertex";
   const FemMaterial& p = material_;
   m["fem_parameters"] =
       "areal_density_kg_per_m2=" + format(p.areal_density_kg_per_m2) +

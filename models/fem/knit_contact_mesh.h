@@ -43,6 +43,15 @@ struct KnitGridContact {
 std::vector<KnitGridContact> knit_grid_contacts(const KnitGraph& graph);
 // Those of the knit model built from the scene.
 std::vector<KnitGridContact> knit_grid_contacts(const Scene& knit_scene);
+// The contacts' points from a knit's node positions (one row per node): the midpoint of each
+// contact's two nodes, which sit ±R through the cloth (Points: an n × 3 Eigen matrix).
+template <class Points>
+Points knit_contact_midpoints(const std::vector<KnitGridContact>& contacts, const Points& nodes) {
+  Points x(static_cast<Eigen::Index>(contacts.size()), 3);
+  for (size_t n = 0; n < contacts.size(); ++n)
+    x.row(static_cast<Eigen::Index>(n)) = 0.5 * (nodes.row(contacts[n].a) + nodes.row(contacts[n].b));
+  return x;
+}
 
 // Whether a stride k fits the knit's contact grid: k divides 2·wales − 1 and
 // courses, and every pin and handle lies on the lattice (i, j multiples of k).

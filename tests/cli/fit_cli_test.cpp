@@ -132,8 +132,9 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
 }
 
 // A knit hung from two contacts (docs/calibration.md §8.1): the parameters its relaxed rest shape
-// depends on are refused, naming the parameter and why; the roll stiffness of its own run is
-// found again from a start 50 % off.
+// depends on are refused, naming the parameter and why, with nothing written; the continuum
+// observes the knit at its stitch contacts; the roll stiffness of its own run is found again
+// from a start 50 % off.
 class KnitFitCli : public FitCli {
  protected:
   void SetUp() override {
@@ -145,7 +146,7 @@ class KnitFitCli : public FitCli {
   }
 };
 
-TEST_F(KnitFitCli, RefusesWhatShapesTheRestAndWritesNothing) {
+TEST_F(KnitFitCli, RefusesWhatShapesTheRestAndObservesTheContactsWithTheContinuum) {
   const fs::path out = dir_ / "never";
   for (const char* key : {"yarn_types.default.stretch_modulus_Pa", "yarn_types.default.bending_modulus_Pa",
                           "knit.stitch_length_stiffness_N", "knit.compression_stiffness_N_per_m"}) {
@@ -155,9 +156,21 @@ TEST_F(KnitFitCli, RefusesWhatShapesTheRestAndWritesNothing) {
     EXPECT_NE(r.output.find("relaxed rest shape"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out)) << key;
   }
-  const auto r = fit("--free knit.roll_stiffness_N --model fem", out);
+  const auto r = fit("--free fem.weft_stretch_N_per_m --model fem", out);  // no calibrated stiffnesses
   EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("fem.warp_stretch_N_per_m"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
+  // With them the continuum observes the yarn-level run at its 2·3·5 stitch contacts (docs/models.md §11.9).
+  std::ofstream(dir_ / "params.toml") << "warp_stretch_N_per_m = 40.0\nweft_stretch_N_per_m = 50.0\n"
+                                         "shear_N_per_m = 2.0\nwarp_bending_N_m = 1e-6\nweft_bending_N_m = 2e-6\n";
+  const fs::path fem = dir_ / "fem";
+  const auto c = fit(
+      "--free fem.weft_stretch_N_per_m --model fem --fem-params " + test::shell_quote((dir_ / "params.toml").string()),
+      fem);
+  EXPECT_NE(c.exit_code, 2) << c.output;
+  std::stringstream json;
+  json << std::ifstream(fem / "fit.json").rdbuf();
+  EXPECT_NE(json.str().find("\"observed_points\": 30,"), std::string::npos) << json.str();
 }
 
 TEST_F(KnitFitCli, RecoversTheRollStiffnessOfItsOwnRun) {
