@@ -199,7 +199,7 @@ TEST_F(Fidelity, DefaultLadderLeavesOutWhatTheSceneCannotHave) {
   for (const auto& [name, why] : p.left_out) out.push_back(name);
   EXPECT_EQ(run, (std::vector<std::string>{"no_friction", "no_parallel_contact", "linear_shear", "frozen_sliding",
                                            "fem_first_guess", "half_step", "quarter_step", "sdirk2_rtol_1e-3"}));
-  EXPECT_EQ(out, (std::vector<std::string>{"fem_s1", "fem_s2", "fem_s4", "scene_step"}));
+  EXPECT_EQ(out, (std::vector<std::string>{"fem_s1", "fem_s2", "fem_s3", "fem_s4", "scene_step"}));
   EXPECT_DOUBLE_EQ(p.cloth_size_m, 6e-3);
   EXPECT_DOUBLE_EQ(p.tolerance_m, 6e-5);  // 1 % of the cloth size
 }
