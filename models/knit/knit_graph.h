@@ -70,7 +70,7 @@ class KnitGraph {
   const KnitNode& node(int k) const { return nodes_[k]; }
   const std::vector<KnitNode>& nodes() const { return nodes_; }
   const std::vector<KnitYarn>& yarns() const { return yarns_; }
-  // Contacts with both slots (two yarns): where the stitch terms act.
+  // Contacts with n ≥ 2 slots (yarns): where the stitch terms act.
   const std::vector<StitchContact>& stitches() const { return stitches_; }
   // Node id of contact (course r ∈ [−1, courses−1] non-periodic / [0, courses−1]
   // periodic, wale c, side s) end e (0: a, 1: b).

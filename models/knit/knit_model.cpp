@@ -10,6 +10,7 @@
 #include "models/knit/image_term.h"
 #include "models/knit/knit_boundary.h"
 #include "models/knit/knit_rest_shape.h"
+#include "models/knit/stack_pairs.h"
 #include "models/knit/terms/stitch_compression.h"
 #include "models/knit/terms/stitch_length.h"
 #include "models/knit/terms/stitch_roll.h"
@@ -240,10 +241,11 @@ void KnitModel::add_bending() {
   bending.finish(terms_);
 }
 
-// At every two-yarn stitch contact: the roll of the two yarns about the stitch
-// segment and each yarn's stitch-length penalty (docs/models.md §11.4, §11.5).
-// L is the stitch segment's generated length; the roll's rest angle ψ̄ is that
-// of the relaxed rest shape, which the tile relaxes without the roll (§11.3).
+// At every stitch contact: each yarn's stitch-length penalty and the roll of
+// every pair of its yarns about the stitch segment (docs/models.md §11.4;
+// stack_pairs.h: n yarns, n(n−1)/2 pairs). L is the stitch segment's generated
+// length; the roll's rest angle ψ̄ is that of the relaxed rest shape, which the
+// tile relaxes without the roll (§11.3).
 void KnitModel::add_stitch_terms() {
   const KnitPattern& k = *scene_.knit;
   Building<StitchRollTerm> roll;
@@ -253,16 +255,18 @@ void KnitModel::add_stitch_terms() {
     const bool a_first = graph_.next(yh, ka).k == visit_of_[c.b][0].second;
     const int first = a_first ? c.a : c.b, second = a_first ? c.b : c.a;
     const KnitNode &n0 = graph_.node(first), &n1 = graph_.node(second);
+    const int yarns = static_cast<int>(n0.u.size());
     const double rest_length = (n1.x - n0.x).norm();
-    for (int slot : {0, 1}) {
+    for (int slot = 0; slot < yarns; ++slot) {
       const auto [y, kf] = visit_of_[first][slot];
       const KnitGraph::Step s = graph_.next(y, kf);
       length.term->add({n0.coord[slot], n1.coord[slot]}, k.stitch_length_stiffness_N, n1.u[slot] + s.du - n0.u[slot]);
       length.add_shift({0.0, s.du});
     }
-    // The node after the segment along the head yarn (x3) and the leg yarn (x5),
-    // as seen from the contact (their image shift less the contact's own).
-    // A yarn that ends at the contact (the cloth's last wale) leaves no roll there.
+    // The node after the segment along a yarn of the pair: the first yarn's
+    // (x3) and the second's (x5), as seen from the contact (their image shift
+    // less the contact's own). A yarn that ends at the contact (the cloth's last
+    // wale) leaves no roll there.
     auto after = [&](int slot, Vec3& shift) {
       const auto [y, ks] = visit_of_[second][slot];
       const KnitGraph::Step s = graph_.next(y, ks);
@@ -271,26 +275,29 @@ void KnitModel::add_stitch_terms() {
       shift = visits[s.k].dx + s.dx - visits[ks].dx;
       return visits[s.k].node;
     };
-    Vec3 shift3 = Vec3::Zero(), shift5 = Vec3::Zero();
-    const int n3 = after(0, shift3), n5 = after(1, shift5);
-    if (n3 < 0 || n5 < 0) continue;
-    const int x0 = n0.x_dof, x1 = n1.x_dof, x3 = graph_.node(n3).x_dof, x5 = graph_.node(n5).x_dof;
-    Eigen::Matrix<double, 12, 1> rest;  // at the initial state: the relaxed rest shape
-    rest << q0_.segment<3>(x0), q0_.segment<3>(x1), q0_.segment<3>(x3) + shift3, q0_.segment<3>(x5) + shift5;
-    roll.term->add({x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2, x5, x5 + 1, x5 + 2}, k.roll_stiffness_N,
-                   rest_length, StitchRollTerm::angle(rest.data()));
-    roll.term->tag_last(kRollStiffnessKey, k.roll_stiffness_N);
-    roll.add_shift(Vec3::Zero());
-    roll.add_shift(Vec3::Zero());
-    roll.add_shift(shift3);
-    roll.add_shift(shift5);
+    for (const StackPair& p : stack_pairs(yarns)) {
+      Vec3 shift3 = Vec3::Zero(), shift5 = Vec3::Zero();
+      const int n3 = after(p.i, shift3), n5 = after(p.j, shift5);
+      if (n3 < 0 || n5 < 0) continue;
+      const int x0 = n0.x_dof, x1 = n1.x_dof, x3 = graph_.node(n3).x_dof, x5 = graph_.node(n5).x_dof;
+      Eigen::Matrix<double, 12, 1> rest;  // at the initial state: the relaxed rest shape
+      rest << q0_.segment<3>(x0), q0_.segment<3>(x1), q0_.segment<3>(x3) + shift3, q0_.segment<3>(x5) + shift5;
+      roll.term->add({x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2, x5, x5 + 1, x5 + 2},
+                     k.roll_stiffness_N, rest_length, StitchRollTerm::angle(rest.data()));
+      roll.term->tag_last(kRollStiffnessKey, k.roll_stiffness_N);
+      roll.add_shift(Vec3::Zero());
+      roll.add_shift(Vec3::Zero());
+      roll.add_shift(shift3);
+      roll.add_shift(shift5);
+    }
   }
   if (k.roll_stiffness_N > 0.0 && !tile_) roll.finish(terms_);
   if (k.stitch_length_stiffness_N > 0.0 && scene_.sliding) length.finish(terms_);
 }
 
 // Contact compression (docs/models.md §11.6), in the tile too, so that the rest
-// shape is an equilibrium with it: at every stitch contact, and between every
+// shape is an equilibrium with it: at every stitch contact (every pair of its
+// yarns), and between every
 // two yarn pieces that share no node and pass closer than the cutoff in the
 // generated geometry.
 void KnitModel::add_compression() {
@@ -321,12 +328,14 @@ void KnitModel::add_compression() {
                           graph_.contact_node(ru, c.wale, c.side, 0),
                           graph_.contact_node(ru, c.wale, c.side, 1)};
     std::array<int, 24> st{};
-    for (int e = 0; e < 8; ++e) {
+    for (int e = 0; e < 8; ++e)
       for (int d = 0; d < 3; ++d) st[3 * e + d] = graph_.node(nodes[e]).x_dof + d;
-      stitch.add_shift(e >= 6 ? up : e >= 4 ? down : Vec3::Zero());
+    // One element per pair of the contact's yarns, at its share of the stack (stack_pairs.h).
+    for (const StackPair& p : stack_pairs(static_cast<int>(graph_.node(c.a).u.size()))) {
+      stitch.term->add(st, kappa, D, c.side == 0 ? 1 : -1, c.purl ? -1 : 1, p.share);
+      stitch.term->tag_last(kCompressionStiffnessKey, kappa);
+      for (int e = 0; e < 8; ++e) stitch.add_shift(e >= 6 ? up : e >= 4 ? down : Vec3::Zero());
     }
-    stitch.term->add(st, kappa, D, c.side == 0 ? 1 : -1, c.purl ? -1 : 1);
-    stitch.term->tag_last(kCompressionStiffnessKey, kappa);
   }
   stitch.finish(terms_);
 

@@ -2,7 +2,8 @@
 // and one sliding coordinate per yarn through them (knit_graph.h), the woven
 // model's segment kernels along each yarn's path (stretch, bending with a
 // straight rest shape, segment inertia, gravity, damping) and the knit terms
-// at every two-yarn stitch contact (stitch roll, stitch-length penalty).
+// at every stitch contact of n ≥ 2 yarns (stitch-length penalty per yarn; roll
+// and contact compression per pair of yarns, stack_pairs.h).
 // The initial state is the relaxed tile of the pattern, tiled (knit_rest_shape.h).
 #pragma once
 #include <algorithm>

@@ -40,13 +40,15 @@ T through_height(const Eigen::Matrix<T, 24, 1>& q, double side, Eigen::Matrix<T,
 }  // namespace
 
 void StitchCompressionTerm::add(const std::array<int, 24>& stencil, double kappa, double contact_distance,
-                                int side_sign, int stitch_sign) {
+                                int side_sign, int stitch_sign, double stack_share) {
   if (!(std::isfinite(kappa) && kappa >= 0.0 && std::isfinite(contact_distance) && contact_distance > 0.0 &&
-        std::abs(side_sign) == 1 && std::abs(stitch_sign) == 1))
-    throw std::invalid_argument("StitchCompressionTerm::add: expected κ ≥ 0, a contact distance > 0 and signs ±1");
+        std::abs(side_sign) == 1 && std::abs(stitch_sign) == 1 && stack_share > 0.0 && stack_share <= 1.0))
+    throw std::invalid_argument(
+        "StitchCompressionTerm::add: expected κ ≥ 0, a contact distance > 0, signs ±1 and a stack share in (0, 1]");
   stencils_.push_back(stencil);
   kappa_.push_back(kappa);
   contact_distance_.push_back(contact_distance);
+  stack_share_.push_back(stack_share);
   side_.push_back(side_sign);
   stitch_.push_back(stitch_sign);
 }
@@ -56,18 +58,19 @@ double StitchCompressionTerm::stack_height(int e, const double* q) const {
 }
 
 double StitchCompressionTerm::energy(int e, const double* q) const {
-  const double gap = std::max(contact_distance_[e] - stack_height(e, q), 0.0);
-  return 0.5 * kappa_[e] * gap * gap;  // V = ½ κ (D − σh)²
+  const double gap = std::max(contact_distance_[e] - stack_share_[e] * stack_height(e, q), 0.0);
+  return 0.5 * kappa_[e] * gap * gap;  // V = ½ κ (D − φσh)²
 }
 
 void StitchCompressionTerm::evaluate(int e, const double* q, const double*, const ElementOutput& out) const {
-  const double D = contact_distance_[e], k = kappa_[e], sigma = stitch_[e];
-  if (stack_height(e, q) >= D) return;  // inactive: no force, no stiffness
+  // φσ: the pair's distance per unit h (φ = 1 and σ = ±1 for a two-yarn stitch: exact).
+  const double D = contact_distance_[e], k = kappa_[e], sigma = stack_share_[e] * stitch_[e];
+  if (stack_share_[e] * stack_height(e, q) >= D) return;  // inactive: no force, no stiffness
   Eigen::Map<Eigen::Matrix<double, 24, 1>> f(out.force);
   if (!out.dfdq) {
     Eigen::Matrix<double, 24, 1> g;
     const double h = through_height<double>(Eigen::Map<const Eigen::Matrix<double, 24, 1>>(q), side_[e], &g);
-    f = k * (D - sigma * h) * sigma * g;  // F = κ (D − σh) σ ∇h
+    f = k * (D - sigma * h) * sigma * g;  // F = κ (D − φσh) φσ ∇h
     return;
   }
   using AD = AutoDiff<24>;
