@@ -80,7 +80,7 @@ class CurveCost final : public ceres::CostFunction {
 };
 
 // The stretch keys a stretch test along warp, weft or both informs: the stiffness, the quartic
-// stiffening where the guess has it, and with both the coupling where the guess has it.
+// stiffening where the guess has it (the areal one acts in all three), and with both the coupling.
 std::vector<std::string> stretch_keys(const FemMaterial& guess, bool warp, bool weft) {
   std::vector<std::string> keys;
   if (warp) keys.push_back("warp_stretch_N_per_m");
@@ -88,6 +88,7 @@ std::vector<std::string> stretch_keys(const FemMaterial& guess, bool warp, bool 
   if (warp && weft && guess.stretch_coupling_N_per_m > 0) keys.push_back("stretch_coupling_N_per_m");
   if (warp && guess.warp_stretch_quartic_N_per_m > 0) keys.push_back("warp_stretch_quartic_N_per_m");
   if (weft && guess.weft_stretch_quartic_N_per_m > 0) keys.push_back("weft_stretch_quartic_N_per_m");
+  if (guess.areal_stretch_quartic_N_per_m > 0) keys.push_back("areal_stretch_quartic_N_per_m");
   return keys;
 }
 

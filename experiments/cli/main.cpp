@@ -225,7 +225,8 @@ int main(int argc, char** argv) {
                       "biaxial test; first guess from the biaxial and uniaxial curves)");
   calibrate->add_flag("--stretch-stiffening", cal.stretch_stiffening,
                       "Fit a quartic stiffening of the stretch ([fem] warp_stretch_quartic_N_per_m, "
-                      "weft_stretch_quartic_N_per_m; first guess from the stretch curves' cubic part)");
+                      "weft_stretch_quartic_N_per_m, and with the biaxial and both uniaxial tests "
+                      "areal_stretch_quartic_N_per_m; first guess from the stretch curves' cubic parts)");
   calibrate->add_option("--shear-spline", cal_shear_spline,
                         "ANGLES: fit the spline shear law ([fem] shear_law = \"spline\", shear_knots_rad = ANGLES, "
                         "comma-separated increasing shear angles in (0, 1.5] rad, e.g. 0.1,0.2,0.3,0.4); its knot "

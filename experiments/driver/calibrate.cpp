@@ -102,6 +102,7 @@ Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
   s.fem.stretch_coupling_N_per_m = optional(m.stretch_coupling_N_per_m);
   s.fem.warp_stretch_quartic_N_per_m = optional(m.warp_stretch_quartic_N_per_m);
   s.fem.weft_stretch_quartic_N_per_m = optional(m.weft_stretch_quartic_N_per_m);
+  s.fem.areal_stretch_quartic_N_per_m = optional(m.areal_stretch_quartic_N_per_m);
   s.fem.shear_law = m.shear_knots_rad.empty() ? FemSettings::ShearLaw::linear_lock : FemSettings::ShearLaw::spline;
   s.fem.shear_knots_rad = m.shear_knots_rad;
   for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) {
@@ -145,8 +146,9 @@ FemMaterial knit_first_guess(const Scene& test_scene, const std::vector<FitCurve
 }
 
 // First guesses of the stretch law's extras from the curves (docs/calibration.md §8). A homogeneous
-// patch answers R_warp = k_u ε + q_u ε³, R_weft likewise and R_biaxial = (k_u + k_v + 2k_c)ε +
-// (q_u + q_v)ε³ (docs/models.md §6.3.1). The cubic part q of a curve: least squares of R = kε + qε³.
+// patch answers R_warp = k_u ε + (q_u + q_a)ε³, R_weft likewise and R_biaxial = (k_u + k_v + 2k_c)ε +
+// (q_u + q_v + 16q_a)ε³ (docs/models.md §6.3.1). The cubic part of a curve: least squares of
+// R = kε + cε³.
 double cubic_part(const FitCurve& c) {
   double a11 = 0, a12 = 0, a22 = 0, b1 = 0, b2 = 0;
   for (size_t i = 0; i < c.target.size(); ++i) {
@@ -163,7 +165,8 @@ const FitCurve* find_curve(const std::vector<FitCurve>& curves, TestKind kind) {
 }
 
 // k_c = ½(biaxial − warp − weft secant at the first load), kept within (2 %, 90 %) of √(k_u k_v);
-// q from each uniaxial curve (else half the biaxial's), at least 1 % of k over the largest strain².
+// q from each uniaxial curve (else half the biaxial's), and with all three curves q_a from the
+// biaxial's excess, (c_b − c_u − c_v)/14; each at least 1 % of k over the largest strain².
 void stretch_law_first_guess(const std::vector<FitCurve>& curves, bool coupling, bool stiffening, FemMaterial& m) {
   const FitCurve *u = find_curve(curves, TestKind::uniaxial_warp), *v = find_curve(curves, TestKind::uniaxial_weft),
                  *b = find_curve(curves, TestKind::biaxial);
@@ -180,6 +183,11 @@ void stretch_law_first_guess(const std::vector<FitCurve>& curves, bool coupling,
     };
     m.warp_stretch_quartic_N_per_m = quartic(u, m.warp_stretch_N_per_m);
     m.weft_stretch_quartic_N_per_m = quartic(v, m.weft_stretch_N_per_m);
+    if (u && v && b) {
+      const double e = b->test.ladder.back(), k = 0.5 * (m.warp_stretch_N_per_m + m.weft_stretch_N_per_m);
+      m.areal_stretch_quartic_N_per_m =
+          std::max((cubic_part(*b) - cubic_part(*u) - cubic_part(*v)) / 14.0, 0.01 * k / (e * e));
+    }
   }
 }
 

@@ -53,6 +53,7 @@ const std::vector<FemParameterKey>& fem_parameter_keys() {
          &field<&FemMaterial::stretch_coupling_N_per_m>},
         {"warp_stretch_quartic_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::warp_stretch_quartic_N_per_m>},
         {"weft_stretch_quartic_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::weft_stretch_quartic_N_per_m>},
+        {"areal_stretch_quartic_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::areal_stretch_quartic_N_per_m>},
     };
     add_knots(k, std::make_integer_sequence<int, FemSettings::kMaxShearKnots>());
     return k;
@@ -133,8 +134,8 @@ FemMaterial parse_fem_parameters(const std::string& text, const std::string& sou
 }
 
 StretchLaw stretch_law(const FemMaterial& m) {
-  return {m.warp_stretch_N_per_m, m.weft_stretch_N_per_m, m.stretch_coupling_N_per_m, m.warp_stretch_quartic_N_per_m,
-          m.weft_stretch_quartic_N_per_m};
+  return {m.warp_stretch_N_per_m,         m.weft_stretch_N_per_m,         m.stretch_coupling_N_per_m,
+          m.warp_stretch_quartic_N_per_m, m.weft_stretch_quartic_N_per_m, m.areal_stretch_quartic_N_per_m};
 }
 
 bool stretch_law_admissible(const FemMaterial& m) {
@@ -192,6 +193,7 @@ FemMaterial fem_material(const Scene& s) {
   set(m.stretch_coupling_N_per_m, f.stretch_coupling_N_per_m);
   set(m.warp_stretch_quartic_N_per_m, f.warp_stretch_quartic_N_per_m);
   set(m.weft_stretch_quartic_N_per_m, f.weft_stretch_quartic_N_per_m);
+  set(m.areal_stretch_quartic_N_per_m, f.areal_stretch_quartic_N_per_m);
   if (f.stretch_coupling_N_per_m) m.stretch_coupling_source = s.source + ":" + std::to_string(f.stretch_coupling_line);
   if (!stretch_law_admissible(m)) {  // docs/models.md §6.3.1: ψ convex in the strains
     const std::string& at = m.stretch_coupling_source;

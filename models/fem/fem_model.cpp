@@ -380,7 +380,8 @@ std::map<std::string, std::string> FemModel::describe() const {
   if (p.diagonal_bending_N_m > 0) m["fem_parameters"] += " diagonal_bending_N_m=" + format(p.diagonal_bending_N_m);
   for (const auto& [key, value] : {std::pair{"stretch_coupling_N_per_m", p.stretch_coupling_N_per_m},
                                    std::pair{"warp_stretch_quartic_N_per_m", p.warp_stretch_quartic_N_per_m},
-                                   std::pair{"weft_stretch_quartic_N_per_m", p.weft_stretch_quartic_N_per_m}})
+                                   std::pair{"weft_stretch_quartic_N_per_m", p.weft_stretch_quartic_N_per_m},
+                                   std::pair{"areal_stretch_quartic_N_per_m", p.areal_stretch_quartic_N_per_m}})
     if (value > 0) m["fem_parameters"] += std::string(" ") + key + "=" + format(value);
   for (size_t i = 0; i < p.shear_knots_rad.size(); ++i)
     m["fem_parameters"] += " " + shear_knot_key(int(i)) + "=" +

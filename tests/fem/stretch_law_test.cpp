@@ -17,7 +17,7 @@ namespace wl {
 namespace {
 
 const Vec2 kUv0(0.001, 0.002), kUv1(0.013, 0.001), kUv2(0.004, 0.011);
-const StretchLaw kLaw{120.0, 45.0, 50.0, 900.0, 3000.0};  // k_c² = 2500 < k_u k_v = 5400
+const StretchLaw kLaw{120.0, 45.0, 50.0, 900.0, 3000.0, 2000.0};  // k_c² = 2500 < k_u k_v = 5400
 
 // Near rest, moderately and far from rest: stretched and compressed along both columns.
 std::vector<test::LocalState> states() {
@@ -45,12 +45,12 @@ TEST(StretchLaw, ForceAndJacobianMatchFiniteDifferences) {
 }
 
 TEST(StretchLaw, ParameterDerivativesMatchFiniteDifferences) {
-  double StretchLaw::*fields[] = {&StretchLaw::k_u, &StretchLaw::k_v, &StretchLaw::k_c, &StretchLaw::q_u,
-                                  &StretchLaw::q_v};
-  const std::vector<std::string> keys{kFemWarpStretch, kFemWeftStretch, kFemStretchCoupling, kFemWarpStretchQuartic,
-                                      kFemWeftStretchQuartic};
+  double StretchLaw::*fields[] = {&StretchLaw::k_u, &StretchLaw::k_v, &StretchLaw::k_c,
+                                  &StretchLaw::q_u, &StretchLaw::q_v, &StretchLaw::q_a};
+  const std::vector<std::string> keys{kFemWarpStretch,        kFemWeftStretch,        kFemStretchCoupling,
+                                      kFemWarpStretchQuartic, kFemWeftStretchQuartic, kFemArealStretchQuartic};
   EXPECT_EQ(stretch_term(kLaw)->parameter_keys(), keys);
-  for (int k = 0; k < 5; ++k) {
+  for (int k = 0; k < 6; ++k) {
     auto make = [&](double p) {
       StretchLaw law = kLaw;
       law.*fields[k] = p;
@@ -63,11 +63,11 @@ TEST(StretchLaw, ParameterDerivativesMatchFiniteDifferences) {
 
 TEST(StretchLaw, EnergyOfAStretchAlongBothColumns) {
   // Unit right triangle, w_u = (1.1, 0, 0), w_v = (0, 0.95, 0): ε_u = 0.1, ε_v = −0.05 and
-  // V = ½(½·120·0.01 + ½·45·0.0025 + 50·(−0.005) + ¼·900·10⁻⁴ + ¼·3000·6.25·10⁻⁶).
+  // V = ½(½·120·0.01 + ½·45·0.0025 + 50·(−0.005) + ¼·900·10⁻⁴ + ¼·3000·6.25·10⁻⁶ + ¼·2000·0.05⁴).
   auto t = std::make_unique<WarpWeftStretchTerm>(kLaw);
   t->add({0, 1, 2, 3, 4, 5, 6, 7, 8}, triangle_rest(Vec2(0, 0), Vec2(1, 0), Vec2(0, 1)));
   const double q[9] = {0, 0, 0, 1.1, 0, 0, 0, 0.95, 0};
-  EXPECT_NEAR(t->energy(0, q), 0.5 * (0.6 + 0.05625 - 0.25 + 0.0225 + 0.0046875), 1e-14);
+  EXPECT_NEAR(t->energy(0, q), 0.5 * (0.6 + 0.05625 - 0.25 + 0.0225 + 0.0046875 + 0.003125), 1e-14);
   // and the linear law (no extras) keeps its two keys
   EXPECT_EQ(WarpWeftStretchTerm(120.0, 45.0).parameter_keys().size(), 2u);
 }
@@ -82,12 +82,13 @@ TEST(StretchLaw, CouplingBeyondTheConvexityBoundIsRefused) {
 TEST(StretchLaw, SceneAndParameterFileKeys) {
   const Scene s = parse_scene(
       "[fem]\nwarp_stretch_N_per_m = 100\nweft_stretch_N_per_m = 64\nstretch_coupling_N_per_m = 30\n"
-      "warp_stretch_quartic_N_per_m = 500\nweft_stretch_quartic_N_per_m = 700\n",
+      "warp_stretch_quartic_N_per_m = 500\nweft_stretch_quartic_N_per_m = 700\nareal_stretch_quartic_N_per_m = 900\n",
       "s.toml");
   const FemMaterial m = fem_material(s);
   EXPECT_EQ(m.stretch_coupling_N_per_m, 30.0);
   EXPECT_EQ(m.warp_stretch_quartic_N_per_m, 500.0);
   EXPECT_EQ(m.weft_stretch_quartic_N_per_m, 700.0);
+  EXPECT_EQ(m.areal_stretch_quartic_N_per_m, 900.0);
   EXPECT_EQ(fem_material(parse_scene("", "s.toml")).stretch_coupling_N_per_m, 0.0);  // off by default
   // the scene's coupling beyond √(k_u k_v) = 80: file, line, key, value and the bound
   try {
@@ -111,7 +112,7 @@ TEST(StretchLaw, SceneAndParameterFileKeys) {
   } catch (const FemParameterError& e) {
     EXPECT_EQ(std::string(e.what()).rfind(file + ":3: key 'stretch_coupling_N_per_m': got 81", 0), 0u) << e.what();
   }
-  // the parameter file's keys
+  // the parameter file's keys, and their round trip
   FemMaterial base;
   base.warp_stretch_N_per_m = base.weft_stretch_N_per_m = 10.0;
   const FemMaterial p =
@@ -120,6 +121,15 @@ TEST(StretchLaw, SceneAndParameterFileKeys) {
   EXPECT_EQ(p.stretch_coupling_source, "cal.toml:1");
   EXPECT_EQ(p.weft_stretch_quartic_N_per_m, 2.0);
   EXPECT_THROW(parse_fem_parameters("stretch_coupling_N_per_m = 0\n", "cal.toml", base), FemParameterError);
+  FemMaterial all = p;
+  all.warp_stretch_quartic_N_per_m = 3.0;
+  all.areal_stretch_quartic_N_per_m = 4.0;
+  write_fem_parameter_file(file, all);
+  const FemMaterial back = read_fem_parameter_file(file, FemMaterial{});
+  EXPECT_EQ(back.stretch_coupling_N_per_m, 5.0);
+  EXPECT_EQ(back.warp_stretch_quartic_N_per_m, 3.0);
+  EXPECT_EQ(back.weft_stretch_quartic_N_per_m, 2.0);
+  EXPECT_EQ(back.areal_stretch_quartic_N_per_m, 4.0);
 }
 
 }  // namespace
