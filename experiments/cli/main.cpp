@@ -693,7 +693,7 @@ int main(int argc, char** argv) {
     std::cerr << "weavelab: bad target run: " << e.what() << "\n";
     return 2;
   } catch (const wl::FemParameterError& e) {
-    std::cerr << "weavelab: bad FEM parameter file: " << e.what() << "\n";
+    std::cerr << "weavelab: bad FEM parameters: " << e.what() << "\n";
     return 2;
   } catch (const std::invalid_argument& e) {
     std::cerr << "weavelab: " << e.what() << "\n";
