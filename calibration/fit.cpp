@@ -55,6 +55,7 @@ class CurveCost final : public ceres::CostFunction {
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
     FemMaterial m = base_;
     for (size_t k = 0; k < free_.size(); ++k) material_value(m, free_[k]) = std::exp(x[0][k]);
+    if (!stretch_law_admissible(m)) return false;  // a non-convex stretch law: Ceres retries a smaller step
     const bool want_j = jacobians && jacobians[0];
     const ResponseCurve c = continuum_(m, curve_.test, want_j ? keys_ : std::vector<std::string>{});
     ++*evaluations_;
@@ -77,6 +78,19 @@ class CurveCost final : public ceres::CostFunction {
   int* evaluations_;
   std::vector<double> weight_;  // per point
 };
+
+// The stretch keys a stretch test along warp, weft or both informs: the stiffness, the quartic
+// stiffening where the guess has it (the areal one acts in all three), and with both the coupling.
+std::vector<std::string> stretch_keys(const FemMaterial& guess, bool warp, bool weft) {
+  std::vector<std::string> keys;
+  if (warp) keys.push_back("warp_stretch_N_per_m");
+  if (weft) keys.push_back("weft_stretch_N_per_m");
+  if (warp && weft && guess.stretch_coupling_N_per_m > 0) keys.push_back("stretch_coupling_N_per_m");
+  if (warp && guess.warp_stretch_quartic_N_per_m > 0) keys.push_back("warp_stretch_quartic_N_per_m");
+  if (weft && guess.weft_stretch_quartic_N_per_m > 0) keys.push_back("weft_stretch_quartic_N_per_m");
+  if (guess.areal_stretch_quartic_N_per_m > 0) keys.push_back("areal_stretch_quartic_N_per_m");
+  return keys;
+}
 
 class Progress final : public ceres::IterationCallback {
  public:
@@ -119,9 +133,9 @@ double& material_value(FemMaterial& m, const std::string& key) {
 
 std::vector<std::string> informed_parameters(TestKind kind, const FemMaterial& guess) {
   switch (kind) {
-    case TestKind::uniaxial_warp: return {"warp_stretch_N_per_m"};
-    case TestKind::uniaxial_weft: return {"weft_stretch_N_per_m"};
-    case TestKind::biaxial: return {"warp_stretch_N_per_m", "weft_stretch_N_per_m"};
+    case TestKind::uniaxial_warp: return stretch_keys(guess, true, false);
+    case TestKind::uniaxial_weft: return stretch_keys(guess, false, true);
+    case TestKind::biaxial: return stretch_keys(guess, true, true);
     case TestKind::shear: {
       std::vector<std::string> keys{"shear_N_per_m"};
       if (guess.shear_lock_angle_rad > 0 && guess.shear_lock_exponent > 0)

@@ -43,6 +43,10 @@ auto* fem_field(S& scene, const std::string& key) {
   if (key == kFemWarpBending) return &f.warp_bending_N_m;
   if (key == kFemWeftBending) return &f.weft_bending_N_m;
   if (key == kFemDiagonalBending) return &f.diagonal_bending_N_m;
+  if (key == kFemStretchCoupling) return &f.stretch_coupling_N_per_m;
+  if (key == kFemWarpStretchQuartic) return &f.warp_stretch_quartic_N_per_m;
+  if (key == kFemWeftStretchQuartic) return &f.weft_stretch_quartic_N_per_m;
+  if (key == kFemArealStretchQuartic) return &f.areal_stretch_quartic_N_per_m;
   for (int i = 0; i < FemSettings::kMaxShearKnots; ++i)
     if (key == "fem." + shear_knot_key(i)) return &f.shear_knot_N_per_m[i];
   return decltype(&f.shear_N_per_m){nullptr};

@@ -220,6 +220,13 @@ int main(int argc, char** argv) {
   calibrate->add_flag("--diagonal-bending", cal.diagonal_bending,
                       "Fit the 45° hinges' own bending stiffness ([fem] diagonal_bending_N_m, informed by the "
                       "bending-diagonal and bending-antidiagonal tests)");
+  calibrate->add_flag("--stretch-coupling", cal.stretch_coupling,
+                      "Fit a warp–weft coupling of the stretch ([fem] stretch_coupling_N_per_m, informed by the "
+                      "biaxial test; first guess from the biaxial and uniaxial curves)");
+  calibrate->add_flag("--stretch-stiffening", cal.stretch_stiffening,
+                      "Fit a quartic stiffening of the stretch ([fem] warp_stretch_quartic_N_per_m, "
+                      "weft_stretch_quartic_N_per_m, and with the biaxial and both uniaxial tests "
+                      "areal_stretch_quartic_N_per_m; first guess from the stretch curves' cubic parts)");
   calibrate->add_option("--shear-spline", cal_shear_spline,
                         "ANGLES: fit the spline shear law ([fem] shear_law = \"spline\", shear_knots_rad = ANGLES, "
                         "comma-separated increasing shear angles in (0, 1.5] rad, e.g. 0.1,0.2,0.3,0.4); its knot "
@@ -686,7 +693,7 @@ int main(int argc, char** argv) {
     std::cerr << "weavelab: bad target run: " << e.what() << "\n";
     return 2;
   } catch (const wl::FemParameterError& e) {
-    std::cerr << "weavelab: bad FEM parameter file: " << e.what() << "\n";
+    std::cerr << "weavelab: bad FEM parameters: " << e.what() << "\n";
     return 2;
   } catch (const std::invalid_argument& e) {
     std::cerr << "weavelab: " << e.what() << "\n";

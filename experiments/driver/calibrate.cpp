@@ -98,6 +98,11 @@ Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
   s.fem.weft_bending_N_m = m.weft_bending_N_m;
   s.fem.diagonal_bending_N_m.reset();
   if (m.diagonal_bending_N_m > 0) s.fem.diagonal_bending_N_m = m.diagonal_bending_N_m;
+  auto optional = [](double v) { return v > 0 ? std::optional<double>(v) : std::nullopt; };
+  s.fem.stretch_coupling_N_per_m = optional(m.stretch_coupling_N_per_m);
+  s.fem.warp_stretch_quartic_N_per_m = optional(m.warp_stretch_quartic_N_per_m);
+  s.fem.weft_stretch_quartic_N_per_m = optional(m.weft_stretch_quartic_N_per_m);
+  s.fem.areal_stretch_quartic_N_per_m = optional(m.areal_stretch_quartic_N_per_m);
   s.fem.shear_law = m.shear_knots_rad.empty() ? FemSettings::ShearLaw::linear_lock : FemSettings::ShearLaw::spline;
   s.fem.shear_knots_rad = m.shear_knots_rad;
   for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) {
@@ -138,6 +143,52 @@ FemMaterial knit_first_guess(const Scene& test_scene, const std::vector<FitCurve
   set(m.warp_bending_N_m, secant(TestKind::bending_warp));
   set(m.weft_bending_N_m, secant(TestKind::bending_weft));
   return m;
+}
+
+// First guesses of the stretch law's extras from the curves (docs/calibration.md §8). A homogeneous
+// patch answers R_warp = k_u ε + (q_u + q_a)ε³, R_weft likewise and R_biaxial = (k_u + k_v + 2k_c)ε +
+// (q_u + q_v + 16q_a)ε³ (docs/models.md §6.3.1). The cubic part of a curve: least squares of
+// R = kε + cε³.
+double cubic_part(const FitCurve& c) {
+  double a11 = 0, a12 = 0, a22 = 0, b1 = 0, b2 = 0;
+  for (size_t i = 0; i < c.target.size(); ++i) {
+    const double e = c.test.ladder[i], e3 = e * e * e;
+    a11 += e * e, a12 += e * e3, a22 += e3 * e3, b1 += e * c.target[i], b2 += e3 * c.target[i];
+  }
+  return (a11 * b2 - a12 * b1) / (a11 * a22 - a12 * a12);
+}
+
+const FitCurve* find_curve(const std::vector<FitCurve>& curves, TestKind kind) {
+  for (const FitCurve& c : curves)
+    if (c.test.kind == kind && !c.test.rotated) return &c;
+  return nullptr;
+}
+
+// k_c = ½(biaxial − warp − weft secant at the first load), kept within (2 %, 90 %) of √(k_u k_v);
+// q from each uniaxial curve (else half the biaxial's), and with all three curves q_a from the
+// biaxial's excess, (c_b − c_u − c_v)/14; each at least 1 % of k over the largest strain².
+void stretch_law_first_guess(const std::vector<FitCurve>& curves, bool coupling, bool stiffening, FemMaterial& m) {
+  const FitCurve *u = find_curve(curves, TestKind::uniaxial_warp), *v = find_curve(curves, TestKind::uniaxial_weft),
+                 *b = find_curve(curves, TestKind::biaxial);
+  if (coupling) {
+    const double bound = std::sqrt(m.warp_stretch_N_per_m * m.weft_stretch_N_per_m);
+    auto secant = [](const FitCurve* c, double fallback) { return c ? c->target[0] / c->test.ladder[0] : fallback; };
+    const double k = 0.5 * (secant(b, 0) - secant(u, m.warp_stretch_N_per_m) - secant(v, m.weft_stretch_N_per_m));
+    m.stretch_coupling_N_per_m = std::clamp(k, 0.02 * bound, 0.9 * bound);
+  }
+  if (stiffening) {
+    auto quartic = [&](const FitCurve* c, double k) {
+      const double q = c ? cubic_part(*c) : b ? 0.5 * cubic_part(*b) : 0.0, e = c ? c->test.ladder.back() : 0.1;
+      return std::max(q, 0.01 * k / (e * e));
+    };
+    m.warp_stretch_quartic_N_per_m = quartic(u, m.warp_stretch_N_per_m);
+    m.weft_stretch_quartic_N_per_m = quartic(v, m.weft_stretch_N_per_m);
+    if (u && v && b) {
+      const double e = b->test.ladder.back(), k = 0.5 * (m.warp_stretch_N_per_m + m.weft_stretch_N_per_m);
+      m.areal_stretch_quartic_N_per_m =
+          std::max((cubic_part(*b) - cubic_part(*u) - cubic_part(*v)) / 14.0, 0.01 * k / (e * e));
+    }
+  }
 }
 
 double mean(const std::vector<double>& x) {
@@ -229,6 +280,14 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
         throw std::invalid_argument("--shear-spline: got " + std::to_string(k[i]) + " at position " +
                                     std::to_string(i + 1) + ", expected increasing shear angles in (0, 1.5] rad");
   }
+  auto has = [&](TestKind kind) {
+    return std::any_of(p.tests.begin(), p.tests.end(), [&](const TestSpec& t) { return t.kind == kind; });
+  };
+  if (c.stretch_coupling && !has(TestKind::biaxial))
+    throw std::invalid_argument("--stretch-coupling: no test informs the coupling, expected biaxial among --tests");
+  if (c.stretch_stiffening && !has(TestKind::uniaxial_warp) && !has(TestKind::uniaxial_weft) && !has(TestKind::biaxial))
+    throw std::invalid_argument(
+        "--stretch-stiffening: no test informs it, expected uniaxial-warp, uniaxial-weft or biaxial among --tests");
   FemMaterial probe;
   for (const std::string& key : c.fit.free) (void)material_value(probe, key);  // unknown: invalid_argument
   if (c.fit.loss != "none" && c.fit.loss != "huber" && c.fit.loss != "cauchy")
@@ -298,6 +357,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   FemMaterial guess = p.scene.knit ? knit_first_guess(p.test_scene, curves) : fem_material(p.scene);
   if (c.diagonal_bending && guess.diagonal_bending_N_m <= 0)  // start where the law is off: the mean
     guess.diagonal_bending_N_m = 0.5 * (guess.warp_bending_N_m + guess.weft_bending_N_m);
+  stretch_law_first_guess(curves, c.stretch_coupling, c.stretch_stiffening, guess);
   if (!c.shear_knots_rad.empty()) guess.shear_knots_rad = c.shear_knots_rad;
   for (size_t i = 0; i < guess.shear_knots_rad.size(); ++i)  // start where the law is linear: k_i = k_sh
     if (guess.shear_knot_N_per_m[i] <= 0) guess.shear_knot_N_per_m[i] = guess.shear_N_per_m;

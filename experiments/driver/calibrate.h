@@ -30,6 +30,9 @@ struct CalibrateConfig {
   bool border_strip = false;                           // continuum with [fem] border_strip (tests and validation)
   bool grid_line_bending = false;                      // continuum with [fem] grid_line_bending (tests and validation)
   bool diagonal_bending = false;  // fit the 45° hinges' own stiffness ([fem] diagonal_bending_N_m), from the mean
+  // Fit the stretch's warp–weft coupling and quartic stiffening (docs/models.md §6.3.1), each
+  // starting from the curves (docs/calibration.md §8).
+  bool stretch_coupling = false, stretch_stiffening = false;
   // Non-empty: fit the spline shear law with these knot angles ([fem] shear_law = "spline"), its knot
   // values starting at shear_N_per_m; empty: the scene's own shear law.
   std::vector<double> shear_knots_rad;

@@ -62,6 +62,11 @@ const std::vector<FemParameterKey>& fem_parameter_keys() {
         {"warp_bending_N_m", "a number > 0 (N·m)", &field<&FemMaterial::warp_bending_N_m>},
         {"weft_bending_N_m", "a number > 0 (N·m)", &field<&FemMaterial::weft_bending_N_m>},
         {"diagonal_bending_N_m", "a number > 0 (N·m)", &field<&FemMaterial::diagonal_bending_N_m>},
+        {"stretch_coupling_N_per_m", "a number > 0 (N/m) below √(warp·weft stretch)",
+         &field<&FemMaterial::stretch_coupling_N_per_m>},
+        {"warp_stretch_quartic_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::warp_stretch_quartic_N_per_m>},
+        {"weft_stretch_quartic_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::weft_stretch_quartic_N_per_m>},
+        {"areal_stretch_quartic_N_per_m", "a number > 0 (N/m)", &field<&FemMaterial::areal_stretch_quartic_N_per_m>},
     };
     add_knots(k, std::make_integer_sequence<int, FemSettings::kMaxShearKnots>());
     return k;
@@ -136,8 +141,19 @@ FemMaterial parse_fem_parameters(const std::string& text, const std::string& sou
            "no such key: the scene's shear law has " + std::to_string(m.shear_knots_rad.size()) +
                " knots (set [fem] shear_law = \"spline\" and shear_knots_rad in the scene)");
     spec->value(m) = *v;
+    if (key == "stretch_coupling_N_per_m") m.stretch_coupling_source = source + ":" + std::to_string(line);
   }
   return m;
+}
+
+StretchLaw stretch_law(const FemMaterial& m) {
+  return {m.warp_stretch_N_per_m,         m.weft_stretch_N_per_m,         m.stretch_coupling_N_per_m,
+          m.warp_stretch_quartic_N_per_m, m.weft_stretch_quartic_N_per_m, m.areal_stretch_quartic_N_per_m};
+}
+
+bool stretch_law_admissible(const FemMaterial& m) {
+  const double k = m.stretch_coupling_N_per_m;
+  return k <= 0 || k * k < m.warp_stretch_N_per_m * m.weft_stretch_N_per_m;
 }
 
 FemMaterial read_fem_parameter_file(const std::string& path, FemMaterial base) {
@@ -189,6 +205,24 @@ FemMaterial fem_material(const Scene& s) {
   set(m.warp_bending_N_m, f.warp_bending_N_m);
   set(m.weft_bending_N_m, f.weft_bending_N_m);
   set(m.diagonal_bending_N_m, f.diagonal_bending_N_m);
+  set(m.stretch_coupling_N_per_m, f.stretch_coupling_N_per_m);
+  set(m.warp_stretch_quartic_N_per_m, f.warp_stretch_quartic_N_per_m);
+  set(m.weft_stretch_quartic_N_per_m, f.weft_stretch_quartic_N_per_m);
+  set(m.areal_stretch_quartic_N_per_m, f.areal_stretch_quartic_N_per_m);
+  if (f.stretch_coupling_N_per_m) m.stretch_coupling_source = s.source + ":" + std::to_string(f.stretch_coupling_line);
+  if (!stretch_law_admissible(m)) {  // docs/models.md §6.3.1: ψ convex in the strains
+    const std::string& at = m.stretch_coupling_source;
+    const size_t colon = at.rfind(':');
+    std::ostringstream v, bound;
+    v.precision(17);
+    v << m.stretch_coupling_N_per_m;
+    bound << "a coupling below √(k_u·k_v) = " << std::sqrt(m.warp_stretch_N_per_m * m.weft_stretch_N_per_m)
+          << " N/m (warp_stretch_N_per_m = " << m.warp_stretch_N_per_m
+          << ", weft_stretch_N_per_m = " << m.weft_stretch_N_per_m << "), for a stretch law convex in the strains";
+    fail(colon == std::string::npos ? "[fem]" : at.substr(0, colon),
+         colon == std::string::npos ? 0 : std::stoi(at.substr(colon + 1)), "stretch_coupling_N_per_m", v.str(),
+         bound.str());
+  }
   for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) set(m.shear_knot_N_per_m[i], f.shear_knot_N_per_m[i]);
   for (size_t i = 0; i < m.shear_knots_rad.size(); ++i)  // an absent knot value: the stiffness at 0
     if (m.shear_knot_N_per_m[i] <= 0) m.shear_knot_N_per_m[i] = m.shear_N_per_m;

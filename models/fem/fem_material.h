@@ -14,6 +14,11 @@
 //        diagonal_bending_N_m = absent (0): the 45° hinges bend with the mean of
 //                               warp and weft; > 0 their own stiffness
 //                               (terms/hinge_bending.h, docs/models.md §6.5.1)
+//        stretch_coupling_N_per_m, warp_stretch_quartic_N_per_m,
+//        weft_stretch_quartic_N_per_m, areal_stretch_quartic_N_per_m
+//                             = absent (0): the linear stretch; > 0 the
+//                               warp–weft coupling k_c (k_c² < k_u·k_v) and the
+//                               quartic stiffening (docs/models.md §6.3.1)
 //        areal_density_kg_per_m2 = (ρ_warp + ρ_weft)/L  (means over yarns), so that
 //                               both models carry the same mass per area (up to
 //                               the yarn ends at the border);
@@ -37,6 +42,7 @@
 #include <utility>
 #include <vector>
 
+#include "models/fem/terms/warp_weft_stretch.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -49,6 +55,10 @@ struct FemMaterial {
   double shear_lock_exponent = 0.0;   // ≤ 0: no locking
   double warp_bending_N_m = 0.0, weft_bending_N_m = 0.0;
   double diagonal_bending_N_m = 0.0;  // ≤ 0: off (45° hinges take the mean of warp and weft)
+  // Stretch law (docs/models.md §6.3.1), each 0 = off: coupling k_c, quartic stiffening q_u, q_v, q_a.
+  double stretch_coupling_N_per_m = 0.0;
+  double warp_stretch_quartic_N_per_m = 0.0, weft_stretch_quartic_N_per_m = 0.0, areal_stretch_quartic_N_per_m = 0.0;
+  std::string stretch_coupling_source;  // "<file>:<line>" the coupling was read from (for errors)
   // Shear law (docs/models.md §6.4.1): empty = linear then lock; else the spline law's knot angles
   // γ_1 < … < γ_n (from [fem] shear_knots_rad) and the tangent stiffness at each (≤ 0: shear_N_per_m).
   std::vector<double> shear_knots_rad;
@@ -74,6 +84,10 @@ inline constexpr const char* kFemShearLockExponent = "fem.shear_lock_exponent";
 inline constexpr const char* kFemWarpBending = "fem.warp_bending_N_m";
 inline constexpr const char* kFemWeftBending = "fem.weft_bending_N_m";
 inline constexpr const char* kFemDiagonalBending = "fem.diagonal_bending_N_m";
+inline constexpr const char* kFemStretchCoupling = "fem.stretch_coupling_N_per_m";
+inline constexpr const char* kFemWarpStretchQuartic = "fem.warp_stretch_quartic_N_per_m";
+inline constexpr const char* kFemWeftStretchQuartic = "fem.weft_stretch_quartic_N_per_m";
+inline constexpr const char* kFemArealStretchQuartic = "fem.areal_stretch_quartic_N_per_m";
 inline constexpr const char* kFemArealDensity = "fem.areal_density_kg_per_m2";
 // The spline shear law's knot values: "fem." + shear_knot_key(i).
 
@@ -81,6 +95,10 @@ class FemParameterError : public std::invalid_argument {  // bad input: exit 2
  public:
   using std::invalid_argument::invalid_argument;
 };
+
+// The stretch law's parameters; the coupling is admissible when k_c² < k_u·k_v (convex in the strains).
+StretchLaw stretch_law(const FemMaterial& m);
+bool stretch_law_admissible(const FemMaterial& m);
 
 // Step 1 alone.
 FemMaterial default_fem_material(const Scene& scene);

@@ -143,7 +143,7 @@ void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
   }
   const TermSwitches& on = scene_.terms;
   if (on.stretch) {
-    auto t = std::make_unique<WarpWeftStretchTerm>(material_.warp_stretch_N_per_m, material_.weft_stretch_N_per_m);
+    auto t = std::make_unique<WarpWeftStretchTerm>(stretch_law(material_));
     for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
     terms.push_back(std::move(t));
   }
@@ -395,6 +395,11 @@ std::map<std::string, std::string> FemModel::describe() const {
       " shear_lock_exponent=" + format(p.shear_lock_exponent) + " warp_bending_N_m=" + format(p.warp_bending_N_m) +
       " weft_bending_N_m=" + format(p.weft_bending_N_m);
   if (p.diagonal_bending_N_m > 0) m["fem_parameters"] += " diagonal_bending_N_m=" + format(p.diagonal_bending_N_m);
+  for (const auto& [key, value] : {std::pair{"stretch_coupling_N_per_m", p.stretch_coupling_N_per_m},
+                                   std::pair{"warp_stretch_quartic_N_per_m", p.warp_stretch_quartic_N_per_m},
+                                   std::pair{"weft_stretch_quartic_N_per_m", p.weft_stretch_quartic_N_per_m},
+                                   std::pair{"areal_stretch_quartic_N_per_m", p.areal_stretch_quartic_N_per_m}})
+    if (value > 0) m["fem_parameters"] += std::string(" ") + key + "=" + format(value);
   for (size_t i = 0; i < p.shear_knots_rad.size(); ++i)
     m["fem_parameters"] += " " + shear_knot_key(int(i)) + "=" +
                            format(p.shear_knot_N_per_m[i] > 0 ? p.shear_knot_N_per_m[i] : p.shear_N_per_m) + " (at " +

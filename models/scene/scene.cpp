@@ -62,8 +62,10 @@
 //       resolved on load; the file must exist
 //     areal_density_kg_per_m2, warp_stretch_N_per_m, weft_stretch_N_per_m, shear_N_per_m,
 //     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m,
-//     diagonal_bending_N_m
-//       optional numbers > 0
+//     diagonal_bending_N_m, stretch_coupling_N_per_m, warp_stretch_quartic_N_per_m,
+//     weft_stretch_quartic_N_per_m, areal_stretch_quartic_N_per_m
+//       optional numbers > 0 (the coupling, once merged with the parameter file and the
+//       defaults, below √(warp·weft stretch): checked by fem_material)
 //     shear_law = "linear_lock" (default) | "spline"; with "spline": shear_knots_rad, 1–6 increasing
 //       angles in (0, 1.5] (default [0.1, 0.2, 0.3, 0.4]), and shear_knot1_N_per_m … shear_knot<n>_N_per_m,
 //       optional numbers > 0 (absent: shear_N_per_m); neither key without the spline law
@@ -373,6 +375,12 @@ void read_fem(TableReader& top, Scene& s) {
   f->read_number("warp_bending_N_m", fem.warp_bending_N_m, "a number > 0 (N·m)", positive);
   f->read_number("weft_bending_N_m", fem.weft_bending_N_m, "a number > 0 (N·m)", positive);
   f->read_number("diagonal_bending_N_m", fem.diagonal_bending_N_m, "a number > 0 (N·m)", positive);
+  if (f->read_number("stretch_coupling_N_per_m", fem.stretch_coupling_N_per_m,
+                     "a number > 0 (N/m) below √(warp·weft stretch)", positive))
+    fem.stretch_coupling_line = line_of(*f->table().get("stretch_coupling_N_per_m"));
+  f->read_number("warp_stretch_quartic_N_per_m", fem.warp_stretch_quartic_N_per_m, "a number > 0 (N/m)", positive);
+  f->read_number("weft_stretch_quartic_N_per_m", fem.weft_stretch_quartic_N_per_m, "a number > 0 (N/m)", positive);
+  f->read_number("areal_stretch_quartic_N_per_m", fem.areal_stretch_quartic_N_per_m, "a number > 0 (N/m)", positive);
   read_shear_law(*f, fem);
   f->finish();
 }

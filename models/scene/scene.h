@@ -80,6 +80,10 @@ struct FemSettings {
   std::optional<double> shear_lock_exponent;
   std::optional<double> warp_bending_N_m, weft_bending_N_m;  // per unit width
   std::optional<double> diagonal_bending_N_m;                // 45° hinges; absent: the mean of warp and weft
+  // Stretch law (docs/models.md §6.3.1): warp–weft coupling and quartic stiffening; absent: off.
+  std::optional<double> stretch_coupling_N_per_m;
+  int stretch_coupling_line = 0;  // its line in the scene file (errors)
+  std::optional<double> warp_stretch_quartic_N_per_m, weft_stretch_quartic_N_per_m, areal_stretch_quartic_N_per_m;
   // Shear law (docs/models.md §6.4): linear then lock, or a tangent stiffness interpolated between
   // knots before the lock (§6.4.1). The knot angles γ_1 < … < γ_n of the spline law and the tangent
   // stiffness at each (absent: shear_N_per_m).

@@ -9,13 +9,10 @@
 #include "calibration/virtual_tests.h"
 #include "models/fem/fem_material.h"
 #include "models/scene/scene.h"
+#include "tests/support/fit_recovery.h"
 
 namespace wl {
 namespace {
-
-Scene patch7() {
-  return material_test_scene(load_scene(WEAVELAB_SOURCE_DIR "/experiments/scenes/hanging_wind.toml"), 7);
-}
 
 // The hanging-cloth fabric's first guess with a softening spline (the knots 0.1 … 0.4 rad).
 FemMaterial softening(const Scene& patch) {
@@ -29,27 +26,17 @@ FemMaterial softening(const Scene& patch) {
 TEST(ShearSplineCalibration, FitRecoversKnownKnotValues) {
   // The continuum's own picture-frame curve, fitted by the same law from the linear law (every knot
   // at k_sh, k_sh 30 % off): the seven parameters come back.
-  const Scene patch = patch7();
+  const Scene patch = test::hanging_wind_patch(7);
   const FemMaterial truth = softening(patch);
-  const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& ks) {
-    return run_fem_test(patch, m, t, ks);
-  };
-  FitCurve fc{{TestKind::shear, {0.03, 0.06, 0.1, 0.14, 0.18, 0.22, 0.26, 0.3, 0.34, 0.38, 0.45, 0.55, 0.65, 0.8}}, {}};
-  for (const ResponsePoint& pt : run_fem_test(patch, truth, fc.test).points) fc.target.push_back(pt.response);
-  ASSERT_EQ(fc.target.size(), fc.test.ladder.size());
+  const std::vector<FitCurve> curves = test::synthetic_curves(
+      patch, truth,
+      {{TestKind::shear, {0.03, 0.06, 0.1, 0.14, 0.18, 0.22, 0.26, 0.3, 0.34, 0.38, 0.45, 0.55, 0.65, 0.8}}});
   FemMaterial start = truth;
   start.shear_N_per_m *= 1.3;
   for (int i = 0; i < 4; ++i) start.shear_knot_N_per_m[i] = start.shear_N_per_m;
   start.shear_lock_angle_rad *= 0.9;
   start.shear_lock_exponent *= 1.2;
-  FitOptions opt;
-  opt.starts = 1;
-  const FitResult r = fit_continuum({fc}, start, continuum, opt);
-  ASSERT_TRUE(r.converged) << r.message;
-  ASSERT_EQ(r.parameters.size(), 7u);
-  FemMaterial fitted = r.material, expected = truth;
-  for (const FittedParameter& p : r.parameters)
-    EXPECT_NEAR(material_value(fitted, p.key) / material_value(expected, p.key), 1.0, 1e-5) << p.key;
+  test::expect_fit_recovers(patch, curves, truth, start, 7, 1e-5);
 }
 
 }  // namespace

@@ -66,9 +66,10 @@ TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
   // Shear at 0.2 and 0.4 rad: below and past the lock angle (0.52 rad here... and its stiffening).
   // Every test of the wider battery too, with the diagonal stiffness on (0.3 of the mean, so that
   // the 45° hinges differ from the law without it); then the bending tests with grid-line bending;
-  // then the shear test with the spline shear law, softening over its four knots (docs/models.md §6.4.1).
-  for (const int law : {0, 1, 2}) {
-    const bool grid_lines = law == 1, spline = law == 2;
+  // then the shear test with the spline shear law, softening over its four knots (docs/models.md §6.4.1);
+  // then the stretch tests with the stretch's coupling and quartic stiffening (§6.3.1).
+  for (const int law : {0, 1, 2, 3}) {
+    const bool grid_lines = law == 1, spline = law == 2, stretch = law == 3;
     Scene patch = material_test_scene(hanging_wind(), 7);
     patch.fem.grid_line_bending = grid_lines;
     FemMaterial m = default_fem_material(patch);
@@ -78,14 +79,25 @@ TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
       m.shear_knot_N_per_m = {0.9 * m.shear_N_per_m, 0.7 * m.shear_N_per_m, 0.35 * m.shear_N_per_m,
                               0.2 * m.shear_N_per_m};
     }
+    if (stretch) {
+      m.stretch_coupling_N_per_m = 0.3 * std::sqrt(m.warp_stretch_N_per_m * m.weft_stretch_N_per_m);
+      m.warp_stretch_quartic_N_per_m = 500 * m.warp_stretch_N_per_m;  // tangent k + 3qε²: 1.6 k at 2 %
+      m.weft_stretch_quartic_N_per_m = 300 * m.weft_stretch_N_per_m;
+      m.areal_stretch_quartic_N_per_m = 100 * m.weft_stretch_N_per_m;
+    }
     for (const std::string& name : test_names()) {
       const TestKind kind = test_kind(name);
       if (grid_lines && !clamps_rotation(kind)) continue;
       if (spline && kind != TestKind::shear) continue;
+      if (stretch && kind != TestKind::uniaxial_warp && kind != TestKind::uniaxial_weft && kind != TestKind::biaxial)
+        continue;
       // (the spline law at 0.4 and 0.55 rad, beyond its last knot, where every knot value acts)
       const std::vector<double> ladder = default_ladder(kind, 7, patch.spacing_m);
       const TestSpec test{kind, {ladder[spline ? 7 : 3], ladder[spline ? 10 : 7]}};
       const std::vector<std::string> keys = informed_parameters(kind, m);
+      if (stretch) {
+        ASSERT_EQ(keys.size(), kind == TestKind::biaxial ? 6u : 3u);
+      }
       std::vector<std::string> prefixed;
       for (const auto& k : keys) prefixed.push_back("fem." + k);
       const ResponseCurve c = run_fem_test(patch, m, test, prefixed);
@@ -102,7 +114,7 @@ TEST(VirtualTests, ContinuumSensitivitiesMatchCentralDifferences) {
           EXPECT_NE(exact, 0.0) << name << " " << keys[k];
           EXPECT_NEAR(exact, fd, 1e-5 * std::abs(fd) + 1e-9 * std::abs(c.points[i].response) / p)
               << name << " " << keys[k] << " at " << c.points[i].load << (grid_lines ? " (grid lines)" : "")
-              << (spline ? " (spline shear)" : "");
+              << (spline ? " (spline shear)" : "") << (stretch ? " (coupled stretch)" : "");
         }
       }
     }

@@ -10,6 +10,7 @@
 #include "calibration/virtual_tests.h"
 #include "models/fem/fem_material.h"
 #include "models/scene/scene.h"
+#include "tests/support/fit_recovery.h"
 
 namespace wl {
 namespace {
@@ -186,29 +187,18 @@ TEST(WiderBattery, FitRecoversTheDiagonalBendingStiffness) {
   truth.warp_bending_N_m *= 0.7;
   truth.weft_bending_N_m *= 1.5;
   truth.diagonal_bending_N_m = 0.25 * truth.weft_bending_N_m;
-  const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
-    return run_fem_test(patch, m, t, keys);
-  };
-  std::vector<FitCurve> curves;
+  std::vector<TestSpec> tests;
   for (TestKind kind :
        {TestKind::bending_warp, TestKind::bending_weft, TestKind::bending_diagonal, TestKind::bending_antidiagonal}) {
     const std::vector<double> full = default_ladder(kind, 7, patch.spacing_m);
-    FitCurve c{{kind, {full[1], full[4], full.back()}}, {}};
-    for (const ResponsePoint& p : run_fem_test(patch, truth, c.test).points) c.target.push_back(p.response);
-    curves.push_back(c);
+    tests.push_back({kind, {full[1], full[4], full.back()}});
   }
+  const std::vector<FitCurve> curves = test::synthetic_curves(patch, truth, tests);
   FemMaterial start = truth;
   start.warp_bending_N_m *= 3.0;
   start.weft_bending_N_m /= 3.0;
   start.diagonal_bending_N_m *= 3.0;
-  FitOptions opt;
-  opt.starts = 1;
-  const FitResult r = fit_continuum(curves, start, continuum, opt);
-  ASSERT_TRUE(r.converged) << r.message;
-  ASSERT_EQ(r.parameters.size(), 3u);
-  FemMaterial fitted = r.material;
-  for (const FittedParameter& p : r.parameters)
-    EXPECT_NEAR(material_value(fitted, p.key) / material_value(truth, p.key), 1.0, 1e-6) << p.key;
+  test::expect_fit_recovers(patch, curves, truth, start, 3, 1e-6);
 }
 
 TEST(WiderBattery, FitRecoversTheGridLineBendingStiffnesses) {
