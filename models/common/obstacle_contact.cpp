@@ -50,7 +50,7 @@ ObstacleContact::ObstacleContact(const Scene& scene, const ObstacleContactRule& 
       barrier->add({x, x + 1, x + 2}, n, k);
       if (o.friction_coefficient() > 0.0) friction->add({x, x + 1, x + 2}, n, k);
     }
-    if (sharp_edges(o, 0.0).empty()) continue;
+    if (!scene.obstacle_contact.segment_edges || sharp_edges(o, 0.0).empty()) continue;
     for (const auto& [a, b] : segments) {
       const int xa = node_x[a], xb = node_x[b];
       edge->add({xa, xa + 1, xa + 2, xb, xb + 1, xb + 2}, k);

@@ -29,8 +29,8 @@ class ObstacleContact {
  public:
   ObstacleContact() = default;
   // Adds to `terms` the barrier on every (node, obstacle), the friction on
-  // those with μ > 0 and the segment–edge barrier on every (segment, obstacle
-  // with sharp edges) (§3.11.10); node k has position DoFs node_x[k] … +2, a
+  // those with μ > 0 and, with obstacle_contact.segment_edges, the segment–edge
+  // barrier on every (segment, obstacle with sharp edges) (§3.11.10); node k has position DoFs node_x[k] … +2, a
   // segment joins two nodes (the cloth's yarn segments or triangle edges). Throws
   // std::invalid_argument naming the node and the obstacle's scene line when a
   // node starts at or inside an obstacle.

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+
 #include "models/common/conservative_advance.h"
 #include "models/common/obstacle_barrier.h"
 #include "models/common/primitive_distance.h"
@@ -19,7 +21,8 @@ Point3<T> lift(const Vec3& a) {
 }
 
 // The point of edge e closest to p: the clamped projection on a segment; on a
-// circle, the point at radius r in the direction of p's offset from the axis.
+// circle, the point at radius r in the direction of p's offset from the axis
+// (any point of it for p on the axis).
 template <class T>
 Point3<T> closest_point(const SharpEdge& e, const Point3<T>& p) {
   using std::sqrt;
@@ -32,7 +35,9 @@ Point3<T> closest_point(const SharpEdge& e, const Point3<T>& p) {
     return lift<T>(e.a) + u * lift<T>(ab);
   }
   const Point3<T> radial = rel - rel.dot(lift<T>(e.k)) * lift<T>(e.k);
-  return lift<T>(e.a) + (e.r / sqrt(radial.squaredNorm())) * radial;
+  const T rho = sqrt(radial.squaredNorm());
+  if (!(rho > 0.0)) return lift<T>(Vec3(e.a + e.r * e.k.unitOrthogonal()));  // on the axis: every point is closest
+  return lift<T>(e.a) + (e.r / rho) * radial;
 }
 
 // f_s = ∂D(p(s))/∂s = n·(x_b − x_a), n = (p − c)/D the unit vector from the

@@ -179,6 +179,7 @@ TEST(ObstacleEdgeTerm, AStripDroppedAcrossAThinPlateNeverCutsIt) {
     scene.height_m = 0.0003;
     scene.terms.wind = false;
     scene.obstacle_contact.activation_distance_m = 0.0002;
+    scene.obstacle_contact.segment_edges = true;
     ObstacleSpec plate;
     plate.shape = ObstacleSpec::Shape::box;
     plate.center_m = {0.0045, 0.001, -0.005};
