@@ -41,6 +41,7 @@ class Obstacle {
 
   Vec3 center(double t) const { return c0_ + t * velocity_; }
   const Vec3& velocity() const { return velocity_; }
+  const Mat3& body_rotation() const { return rotation_; }  // R: body to world
   double friction_coefficient() const { return mu_; }
   const ObstacleSpec& spec() const { return spec_; }
   // The surface at time t as triangles; a plane is drawn as a square of half

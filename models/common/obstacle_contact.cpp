@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "models/common/obstacle_barrier.h"
+#include "models/common/obstacle_edge.h"
 #include "models/common/obstacle_friction.h"
 
 namespace wl {
@@ -24,7 +25,8 @@ ObstacleContactRule obstacle_contact_rule(const Scene& scene, double node_spacin
 }
 
 ObstacleContact::ObstacleContact(const Scene& scene, const ObstacleContactRule& rule, const std::vector<int>& node_x,
-                                 const Vec& q0, std::vector<std::unique_ptr<Term>>& terms) {
+                                 const std::vector<std::array<int, 2>>& segments, const Vec& q0,
+                                 std::vector<std::unique_ptr<Term>>& terms) {
   if (scene.obstacles.empty()) return;
   auto obstacles = std::make_shared<std::vector<Obstacle>>();
   for (const ObstacleSpec& s : scene.obstacles) obstacles->emplace_back(s);
@@ -32,6 +34,7 @@ ObstacleContact::ObstacleContact(const Scene& scene, const ObstacleContactRule& 
   const double dhat = rule.activation_distance_m, kappa = rule.stiffness_N_per_m;
   auto barrier = std::make_unique<ObstacleBarrierTerm>(obstacles_, dhat, kappa);
   auto friction = std::make_unique<ObstacleFrictionTerm>(obstacles_, dhat, kappa, rule.friction_speed_m_per_s);
+  auto edge = std::make_unique<ObstacleEdgeTerm>(obstacles_, dhat, kappa);
   for (int k = 0; k < static_cast<int>(obstacles->size()); ++k) {
     const Obstacle& o = (*obstacles)[k];
     for (int n = 0; n < static_cast<int>(node_x.size()); ++n) {
@@ -47,9 +50,19 @@ ObstacleContact::ObstacleContact(const Scene& scene, const ObstacleContactRule& 
       barrier->add({x, x + 1, x + 2}, n, k);
       if (o.friction_coefficient() > 0.0) friction->add({x, x + 1, x + 2}, n, k);
     }
+    if (!scene.obstacle_contact.segment_edges || sharp_edges(o, 0.0).empty()) continue;
+    for (const auto& [a, b] : segments) {
+      const int xa = node_x[a], xb = node_x[b];
+      edge->add({xa, xa + 1, xa + 2, xb, xb + 1, xb + 2}, k);
+      edge_nodes_.push_back({a, b});
+    }
   }
   barrier_ = static_cast<int>(terms.size());
   terms.push_back(std::move(barrier));
+  if (edge->num_elements() > 0) {
+    edge_ = static_cast<int>(terms.size());
+    terms.push_back(std::move(edge));
+  }
   if (friction->num_elements() > 0) {
     friction_ = static_cast<int>(terms.size());
     terms.push_back(std::move(friction));
@@ -65,6 +78,17 @@ DataArray ObstacleContact::force_data(const std::vector<std::unique_ptr<Term>>& 
     const auto s = barrier.stencil(e);
     const Vec3 f = barrier.force(e, t, q.segment<3>(s[0]));
     for (int c = 0; c < 3; ++c) out.values[3 * barrier.node(e) + c] += f[c];
+  }
+  if (edge_ >= 0) {
+    const auto& edge = static_cast<const ObstacleEdgeTerm&>(*terms[edge_]);
+    for (int e = 0; e < edge.num_elements(); ++e) {
+      const auto s = edge.stencil(e);
+      Eigen::Matrix<double, 6, 1> lq;
+      for (int a = 0; a < 6; ++a) lq[a] = q[s[a]];
+      const Eigen::Matrix<double, 6, 1> f = edge.force(e, t, lq.data());
+      for (int i = 0; i < 2; ++i)
+        for (int c = 0; c < 3; ++c) out.values[3 * edge_nodes_[e][i] + c] += f[3 * i + c];
+    }
   }
   if (friction_ >= 0) {
     const auto& friction = static_cast<const ObstacleFrictionTerm&>(*terms[friction_]);

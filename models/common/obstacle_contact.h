@@ -3,6 +3,7 @@
 // contact rules, and gives the contact force per node and the obstacles'
 // surface for output. Shared by the yarn and FEM models.
 #pragma once
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -27,14 +28,17 @@ ObstacleContactRule obstacle_contact_rule(const Scene& scene, double node_spacin
 class ObstacleContact {
  public:
   ObstacleContact() = default;
-  // Adds to `terms` the barrier on every (node, obstacle) and the friction on
-  // those with μ > 0; node k has position DoFs node_x[k] … +2. Throws
+  // Adds to `terms` the barrier on every (node, obstacle), the friction on
+  // those with μ > 0 and, with obstacle_contact.segment_edges, the segment–edge
+  // barrier on every (segment, obstacle with sharp edges) (§3.11.10); node k has position DoFs node_x[k] … +2, a
+  // segment joins two nodes (the cloth's yarn segments or triangle edges). Throws
   // std::invalid_argument naming the node and the obstacle's scene line when a
   // node starts at or inside an obstacle.
-  ObstacleContact(const Scene& scene, const ObstacleContactRule& rule, const std::vector<int>& node_x, const Vec& q0,
+  ObstacleContact(const Scene& scene, const ObstacleContactRule& rule, const std::vector<int>& node_x,
+                  const std::vector<std::array<int, 2>>& segments, const Vec& q0,
                   std::vector<std::unique_ptr<Term>>& terms);
   bool empty() const { return barrier_ < 0; }
-  // "contact_force" point data [N]: barrier and friction force on each node at
+  // "contact_force" point data [N]: barrier, segment–edge and friction force on each node at
   // (t, q, v), friction with its lagged normal force (that of the last accepted state).
   DataArray force_data(const std::vector<std::unique_ptr<Term>>& terms, int num_nodes, double t, const Vec& q,
                        const Vec& v) const;
@@ -43,7 +47,8 @@ class ObstacleContact {
 
  private:
   std::shared_ptr<const std::vector<Obstacle>> obstacles_;
-  int barrier_ = -1, friction_ = -1;  // indices into the model's terms
+  int barrier_ = -1, friction_ = -1, edge_ = -1;  // indices into the model's terms
+  std::vector<std::array<int, 2>> edge_nodes_;    // the nodes of each segment–edge element
 };
 
 }  // namespace wl

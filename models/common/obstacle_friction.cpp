@@ -23,24 +23,29 @@ void ObstacleFrictionTerm::add(const std::array<int, 3>& stencil, int node, int 
   node_.push_back(node);
   obstacle_.push_back(obstacle);
   lambda_.push_back(0.0);
+  slip_.push_back(0.0);
   normal_.push_back(Vec3::UnitZ());
 }
 
-void ObstacleFrictionTerm::set_lagged(int e, double lambda, const Vec3& n) {
+void ObstacleFrictionTerm::set_lagged(int e, double lambda, const Vec3& n, double slip_speed) {
   lambda_[e] = lambda;
   normal_[e] = n.normalized();
+  slip_[e] = slip_speed;
   lagged_ = true;
 }
 
-// λ = −κ b'(d), n = ∇d at the state of ctx (docs/models.md §3.11.3).
+// λ = −κ b'(d), n = ∇d, y₀ = ‖(I − n nᵀ)(ẋ − v_o)‖ at the state of ctx (docs/models.md §3.11.3).
 void ObstacleFrictionTerm::lag(const EvalContext& ctx) {
   for (int e = 0; e < num_elements(); ++e) {
     const auto& s = stencils_[e];
     const Vec3 x((*ctx.q)[s[0]], (*ctx.q)[s[1]], (*ctx.q)[s[2]]);
+    const Obstacle& o = (*obstacles_)[obstacle_[e]];
     Vec3 g;
-    const double d = (*obstacles_)[obstacle_[e]].signed_distance(x, ctx.t, &g);
+    const double d = o.signed_distance(x, ctx.t, &g);
     lambda_[e] = std::max(0.0, -kappa_ * contact_barrier(d, dhat_).db);
     normal_[e] = g;
+    const Vec3 w = ctx.v ? Vec3(Vec3((*ctx.v)[s[0]], (*ctx.v)[s[1]], (*ctx.v)[s[2]]) - o.velocity()) : Vec3::Zero();
+    slip_[e] = (w - g * g.dot(w)).norm();
   }
   lagged_ = true;
 }
@@ -58,23 +63,16 @@ Vec3 ObstacleFrictionTerm::force(int e, const Vec3& xdot) const {
   return f;
 }
 
-// F = −μλ m(y) u, u = T(ẋ − v_o), y = ‖u‖ (docs/models.md §3.11.3)
+// F = −μλ m(y₀) u, u = T(ẋ − v_o) (docs/models.md §3.11.3)
 void ObstacleFrictionTerm::evaluate(int e, const double*, const double* v, const ElementOutput& out) const {
   const Obstacle& o = (*obstacles_)[obstacle_[e]];
-  const double scale = o.friction_coefficient() * lambda_[e];
-  if (scale == 0.0) return;
+  const double y = slip_[e], m = y < eps_ ? 2.0 / eps_ - y / eps_ / eps_ : 1.0 / y;
+  const double c = o.friction_coefficient() * lambda_[e] * m;
+  if (c == 0.0) return;
   const Vec3& n = normal_[e];
   const Mat3 T = Mat3::Identity() - n * n.transpose();
-  const Vec3 u = T * (Eigen::Map<const Vec3>(v) - o.velocity());
-  const double y = u.norm();
-  const double m = y < eps_ ? 2.0 / eps_ - y / eps_ / eps_ : 1.0 / y;
-  VecMap(out.force) = -scale * m * u;
-  if (out.dfdv) {
-    // m'(y)/y: −1/(ε² y) below ε, −1/y³ above; times u uᵀ (which vanishes as y → 0).
-    const Mat3 uu = y > 0.0 ? Mat3(u * u.transpose() / y) : Mat3::Zero();
-    const Mat3 curv = y < eps_ ? Mat3(-uu / (eps_ * eps_)) : Mat3(-uu / (y * y));
-    MatMap(out.dfdv) = -scale * (m * T + curv);
-  }
+  VecMap(out.force) = -c * (T * (Eigen::Map<const Vec3>(v) - o.velocity()));
+  if (out.dfdv) MatMap(out.dfdv) = -c * T;
 }
 
 }  // namespace wl

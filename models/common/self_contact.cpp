@@ -11,6 +11,8 @@
 #include <CGAL/box_intersection_d.h>
 #include <Eigen/Eigenvalues>
 
+#include "models/common/conservative_advance.h"
+
 namespace wl {
 
 namespace {
@@ -31,19 +33,11 @@ double first_approach(PairKind kind, const std::array<Vec3, 4>& x0, const std::a
   const int n1 = first_size(kind);
   double l1 = 0.0, l2 = 0.0;
   for (int i = 0; i < 4; ++i) (i < n1 ? l1 : l2) = std::max(i < n1 ? l1 : l2, dx[i].norm());
-  const double lip = l1 + l2;
-  double alpha = 0.0, d = d0;
-  for (int it = 0; it < 100; ++it) {
-    if (!(lip > 0.0)) return 1.0;
-    const double step = (d - target) / lip;
-    if (alpha + step >= 1.0) return 1.0;
-    if (step <= 1e-9) return alpha;
-    alpha += step;
+  return conservative_advance(d0, target, l1 + l2, [&](double alpha) {
     std::array<Vec3, 4> x;
     for (int i = 0; i < 4; ++i) x[i] = x0[i] + alpha * (x1[i] - x0[i]);
-    d = closest_support(kind, x).distance;
-  }
-  return alpha;
+    return closest_support(kind, x).distance;
+  });
 }
 
 // The symmetric part of a matrix with its negative eigenvalues set to 0.

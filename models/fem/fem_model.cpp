@@ -259,13 +259,17 @@ void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
     }
     terms.push_back(std::move(t));
   }
-  // Node–obstacle contact and friction at every vertex (docs/models.md §3.11), node spacing stride·L.
+  // Node–obstacle contact and friction at every vertex, segment–edge contact on
+  // every triangle edge (docs/models.md §3.11), node spacing stride·L.
   if (!scene_.obstacles.empty()) {
     std::vector<int> node_x;
     for (int i = 0; i < nv; ++i) node_x.push_back(3 * i);
     const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
     const ObstacleContactRule rule = obstacle_contact_rule(scene_, scene_.fem.stride * scene_.spacing_m, m);
-    obstacles_ = ObstacleContact(scene_, rule, node_x, q0_, terms);
+    std::set<std::array<int, 2>> edges;  // the triangles' edges, each once
+    for (const auto& t : mesh_.triangles)
+      for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+    obstacles_ = ObstacleContact(scene_, rule, node_x, {edges.begin(), edges.end()}, q0_, terms);
   }
   // Cloth–cloth contact over the mesh's triangles (docs/models.md §3.11.7).
   if (scene_.self_contact.enabled) {

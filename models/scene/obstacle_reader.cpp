@@ -99,6 +99,7 @@ void read_obstacles(TableReader& top, Scene& s) {
   c->read_number("activation_distance_m", p.activation_distance_m, "a number > 0 (m)", positive);
   c->read_number("stiffness_N_per_m", p.stiffness_N_per_m, "a number > 0 (N/m)", positive);
   c->read_number("friction_speed_m_per_s", p.friction_speed_m_per_s, "a number > 0 (m/s)", positive);
+  c->read_bool("segment_edges", p.segment_edges);
   c->finish();
 }
 

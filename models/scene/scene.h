@@ -132,6 +132,7 @@ struct ObstacleContactParams {
   std::optional<double> activation_distance_m;  // d̂
   std::optional<double> stiffness_N_per_m;      // κ
   double friction_speed_m_per_s = 1e-3;         // ε_v of the smoothed Coulomb law
+  bool segment_edges = false;                   // segments kept off sharp edges (§3.11.10)
 };
 
 // Cloth–cloth contact (docs/models.md §3.11.7), off unless enabled; absent

@@ -299,7 +299,8 @@ void YarnModel::add_pins() {
   }
 }
 
-// Node–obstacle contact and friction at every crossing (docs/models.md §3.11):
+// Node–obstacle contact and friction at every crossing, segment–edge contact on
+// every yarn segment (docs/models.md §3.11):
 // node spacing L, a node's mass at most (ρ_warp + ρ_weft)·L.
 void YarnModel::add_obstacles() {
   if (scene_.obstacles.empty()) return;
@@ -308,7 +309,13 @@ void YarnModel::add_obstacles() {
   double rho = 0.0;
   for (const auto& [name, y] : scene_.yarn_types) rho = std::max(rho, y.density_kg_per_m);
   const double L = scene_.spacing_m;
-  obstacles_ = ObstacleContact(scene_, obstacle_contact_rule(scene_, L, 2.0 * rho * L), node_x, q0_, terms_);
+  std::vector<std::array<int, 2>> segments;  // the yarn segments between neighbouring crossings
+  for (int j = 0; j < grid_.nv(); ++j)
+    for (int i = 0; i < grid_.nu(); ++i) {
+      if (i + 1 < grid_.nu()) segments.push_back({grid_.node(i, j), grid_.node(i + 1, j)});
+      if (j + 1 < grid_.nv()) segments.push_back({grid_.node(i, j), grid_.node(i, j + 1)});
+    }
+  obstacles_ = ObstacleContact(scene_, obstacle_contact_rule(scene_, L, 2.0 * rho * L), node_x, segments, q0_, terms_);
 }
 
 // Cloth–cloth contact over the crossing grid, each cell split along

@@ -120,34 +120,44 @@ TEST(ObstacleFriction, MatchesFiniteDifferencesSlowAndFastAndOnAMovingObstacle) 
   plane.friction_coefficient = 0.4;
   plane.velocity_m_per_s = {0.001, -0.002, 0.0};
   const double eps = 1e-3;
-  ObstacleFrictionTerm term(one(plane), kDhat, kKappa, eps);
-  term.add({0, 1, 2}, 0, 0);
-  term.set_lagged(0, 2.0, Vec3(0.0, -std::sin(0.26), std::cos(0.26)));
   test::FdOptions opt;
   opt.constant_force = true;  // λ and n are lagged: ∂F/∂x = 0
   const std::vector<test::LocalState> states = {{{0.01, 0.02, 0.003}, {0.0013, -0.0017, 0.0004}},  // ‖u‖ < ε
                                                 {{0.01, 0.02, 0.003}, {0.03, 0.05, -0.01}}};       // ‖u‖ > ε
-  auto r = test::check_element(term, 0, states, opt);
-  EXPECT_TRUE(r.ok) << r.detail;
+  for (double slip : {0.3 * eps, 20.0 * eps}) {  // lagged slip speed below and above ε
+    ObstacleFrictionTerm term(one(plane), kDhat, kKappa, eps);
+    term.add({0, 1, 2}, 0, 0);
+    term.set_lagged(0, 2.0, Vec3(0.0, -std::sin(0.26), std::cos(0.26)), slip);
+    auto r = test::check_element(term, 0, states, opt);
+    EXPECT_TRUE(r.ok) << "y₀ = " << slip << ": " << r.detail;
+  }
 }
 
-TEST(ObstacleFriction, DissipatesAndReachesTheCoulombBound) {
+// F·(ẋ − v_o) ≤ 0 for every ẋ and lagged slip speed y₀; at the steady slip
+// ‖u‖ = y₀ the force is μλ f₁(y₀), f₁(y) = 2y/ε − y²/ε² below ε, 1 above.
+TEST(ObstacleFriction, DissipatesForEveryVelocityAndGivesSmoothedCoulombAtSteadySlip) {
   ObstacleSpec plane = spec(ObstacleSpec::Shape::plane, Vec3::Zero());
   plane.friction_coefficient = 0.5;
   plane.velocity_m_per_s = {0.2, 0.0, 0.0};
-  ObstacleFrictionTerm term(one(plane), kDhat, kKappa, 1e-3);
+  const double eps = 1e-3, lambda = 3.0;
+  ObstacleFrictionTerm term(one(plane), kDhat, kKappa, eps);
   term.add({0, 1, 2}, 0, 0);
-  term.set_lagged(0, 3.0, Vec3::UnitZ());
   std::mt19937 rng(7);
   std::normal_distribution<double> n(0.0, 0.01);
   for (int k = 0; k < 50; ++k) {
+    term.set_lagged(0, lambda, Vec3::UnitZ(), std::abs(n(rng)));
     const Vec3 v(n(rng), n(rng), n(rng));
     const Vec3 f = term.force(0, v);
     EXPECT_LE(f.dot(v - Vec3(0.2, 0, 0)), 1e-15);  // F·(ẋ − v_o) ≤ 0
-    EXPECT_LE(f.norm(), 0.5 * 3.0 * (1 + 1e-12));  // never beyond μλ
     EXPECT_NEAR(f.z(), 0.0, 1e-15);                // tangential
   }
-  EXPECT_NEAR(term.force(0, Vec3(0.2 + 0.05, 0, 7.0)).x(), -1.5, 1e-12);  // sliding: μλ against the slip
+  for (double y : {0.25 * eps, 0.9 * eps, 1.0 * eps, 50.0 * eps}) {
+    term.set_lagged(0, lambda, Vec3::UnitZ(), y);
+    const double f1 = y < eps ? 2.0 * y / eps - y * y / (eps * eps) : 1.0;
+    const Vec3 f = term.force(0, Vec3(0.2 + 0.6 * y, -0.8 * y, 7.0));  // slip (0.6, −0.8) y, any normal speed
+    EXPECT_NEAR(f.norm(), 0.5 * lambda * f1, 1e-12 * lambda) << "y = " << y;
+    EXPECT_NEAR(f.normalized().dot(Vec3(-0.6, 0.8, 0.0)), 1.0, 1e-12) << "y = " << y;  // against the slip
+  }
 }
 
 // first_approach against the exact first time of the distance τ on a plane and a

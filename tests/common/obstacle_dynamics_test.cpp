@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "integrators/integrator.h"
+#include "models/common/handle_spring.h"
 #include "models/common/obstacle_barrier.h"
 #include "models/common/obstacle_contact.h"
 #include "models/core/term_model.h"
@@ -29,7 +30,8 @@ constexpr double kMass = 1e-3, kG = 9.81, kDhat = 1e-3, kKappa = 50.0;
 // One node of mass m under gravity among the scene's obstacles.
 class NodeModel : public TermModel {
  public:
-  NodeModel(const Scene& scene, const Vec3& x0, const Vec3& v0) {
+  // spring_k > 0: a spring of that stiffness [N/m] pulls the node to the origin.
+  NodeModel(const Scene& scene, const Vec3& x0, const Vec3& v0, double spring_k = 0.0) {
     num_dofs_ = 3;
     q0_ = x0;
     v0_ = v0;
@@ -37,7 +39,13 @@ class NodeModel : public TermModel {
     auto g = std::make_unique<NodalGravityTerm>(Vec3(0, 0, -kG));
     g->add({0, 1, 2}, kMass);
     terms_.push_back(std::move(g));
-    contact_ = ObstacleContact(scene, {kDhat, kKappa, scene.obstacle_contact.friction_speed_m_per_s}, {0}, q0_, terms_);
+    if (spring_k > 0.0) {
+      auto spring = std::make_unique<HandleSpringTerm>();
+      spring->add({0, 1, 2}, Vec3::Zero(), spring_k);
+      terms_.push_back(std::move(spring));
+    }
+    contact_ =
+        ObstacleContact(scene, {kDhat, kKappa, scene.obstacle_contact.friction_speed_m_per_s}, {0}, {}, q0_, terms_);
     finalize();
   }
   std::unique_ptr<Model> clone() const override { return std::make_unique<NodeModel>(*this); }
@@ -248,6 +256,48 @@ TEST(BlockOnIncline, SticksBelowTanThetaEqualsMuAndSlidesAbove) {
       EXPECT_NEAR((v2 - v1) / 0.2, a, 0.02 * a) << "θ = " << deg << "°";
       EXPECT_GT(s2 - s1, 0.5 * a * 0.2 * 0.2);
     }
+  }
+}
+
+// A node on a floor with friction, pulled sideways by a spring 4× stronger than
+// μ m g: it slides, turns back, and comes to rest where friction holds the
+// spring. Every term but friction is conservative and convex here (spring,
+// gravity, the barrier of a plane), so backward Euler's step dissipates them;
+// friction must dissipate too: the total energy may not rise in any step, in
+// the slide, at the turns or at rest (docs/models.md §3.11.3). With 5 ms steps
+// (the drapes' settling steps) a friction linearized at the start of a step
+// pushes on past a turn.
+TEST(FrictionOnAFloor, NoStepGainsEnergyInSlidingTurningOrAtRest) {
+  const double mu = 0.5, k = 1.0, x0 = 4.0 * mu * kMass * kG / k;
+  const Scene scene = plane_scene(0.0, mu);
+  const double z0 = rest_distance(kMass * kG);
+  for (const char* name : {"be-linear", "be-newton"}) {
+    NodeModel model(scene, Vec3(x0, 0.3 * x0, z0), Vec3::Zero(), k);
+    auto integ = make_integrator(name);
+    IntegratorOptions opt;
+    opt.dt = 5e-3;
+    integ->initialize(model, 0.0, model.initial_q(), model.initial_v(), opt);
+    auto energy = [&] { return 0.5 * kMass * integ->v().squaredNorm() + model.potential_energy(integ->q()); };
+    const double e0 = energy();
+    double e = e0, rise = 0.0;
+    int turns = 0;
+    double vx = 0.0;
+    integ->on_step = [&](const StepRecord&) {
+      const double now = energy();
+      rise = std::max(rise, now - e);
+      e = now;
+      if (integ->v().x() * vx < 0.0) ++turns;
+      vx = integ->v().x();
+    };
+    const StepResult r = integ->advance_to(1.0);
+    ASSERT_EQ(r.outcome, Outcome::ok) << name << ": " << r.message;
+    EXPECT_GE(turns, 1) << name;
+    EXPECT_LE(rise, 1e-9 * e0) << name << ": a step gained " << rise << " J";
+    // At rest in the stick zone, creeping at most at the speed where f₁ holds the spring.
+    const double pull = k * std::hypot(integ->q().x(), integ->q().y()), hold = mu * kMass * kG;
+    ASSERT_LT(pull, hold) << name << ": beyond the stick zone";
+    const double creep = scene.obstacle_contact.friction_speed_m_per_s * (1.0 - std::sqrt(1.0 - pull / hold));
+    EXPECT_LT(integ->v().norm(), 1.05 * creep + 1e-9) << name << ": not at rest";
   }
 }
 

@@ -431,7 +431,8 @@ TEST(SceneParse, ObstaclesAndTheirContact) {
       "friction_coefficient = 0.4\nvelocity_m_per_s = [0, 0, 0.1]\n"
       "[[obstacles]]\nshape = \"box\"\ncenter_m = [1, 2, 3]\nhalf_extents_m = [0.1, 0.2, 0.3]\n"
       "[[obstacles]]\nshape = \"disk\"\ncenter_m = [0, 0, 0]\nradius_m = 0.02\nthickness_m = 0.004\n"
-      "[obstacle_contact]\nactivation_distance_m = 0.0002\nstiffness_N_per_m = 3.5\nfriction_speed_m_per_s = 0.01\n",
+      "[obstacle_contact]\nactivation_distance_m = 0.0002\nstiffness_N_per_m = 3.5\nfriction_speed_m_per_s = 0.01\n"
+      "segment_edges = true\n",
       "o.toml");
   ASSERT_EQ(s.obstacles.size(), 3u);
   EXPECT_EQ(s.obstacles[0].shape, ObstacleSpec::Shape::plane);
@@ -445,6 +446,9 @@ TEST(SceneParse, ObstaclesAndTheirContact) {
   EXPECT_EQ(*s.obstacle_contact.activation_distance_m, 0.0002);
   EXPECT_EQ(*s.obstacle_contact.stiffness_N_per_m, 3.5);
   EXPECT_EQ(s.obstacle_contact.friction_speed_m_per_s, 0.01);
+  EXPECT_TRUE(s.obstacle_contact.segment_edges);
+  EXPECT_FALSE(
+      parse_scene("[[obstacles]]\nshape = \"plane\"\ncenter_m = [0, 0, 0]\n", "p.toml").obstacle_contact.segment_edges);
 }
 
 TEST(SceneErrors, ObstacleShapeSizesAndRequiredKeys) {
