@@ -6,7 +6,9 @@
 # knit_hanging_14 scene) and reports each rung's distance to the yarn level at
 # the stitch contacts beside each run's own time error, and its CPU time.
 # WL_OUT changes the folder (default results/knit_fidelity), WL_SCENE the scene,
-# WL_PATCH the patch, WL_TESTS the calibration's tests; extra arguments go to
+# WL_PATCH the patch, WL_TESTS the calibration's tests, WL_LAW the calibration's
+# law options (e.g. "--stretch-coupling --stretch-stiffening", docs/models.md
+# §6.3.1; default the linear law); extra arguments go to
 # `weavelab fidelity` (e.g. --variants fem_s1).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,6 +16,7 @@ out=${WL_OUT:-results/knit_fidelity}
 scene=${WL_SCENE:-experiments/scenes/knit_hanging_14.toml}
 patch=${WL_PATCH:-8}
 tests=${WL_TESTS:-uniaxial-warp,uniaxial-weft,biaxial,shear,bending-warp,bending-weft}
+read -r -a law <<<"${WL_LAW:-}"
 mkdir -p "$out"
-nice build/weavelab calibrate "$scene" --patch "$patch" --tests "$tests" --starts 1 --quiet --out "$out/calibration"
+nice build/weavelab calibrate "$scene" --patch "$patch" --tests "$tests" --starts 1 "${law[@]}" --quiet --out "$out/calibration"
 nice build/weavelab fidelity "$scene" --fem-params "$out/calibration/params.toml" --out "$out/fidelity" "$@"

@@ -87,7 +87,9 @@ class OneThreadRegions {
 // iteration here. The same arithmetic as cholmod_l_solve.
 class Cholesky : public Eigen::CholmodDecomposition<Matrix64, Eigen::Lower> {
  public:
-  Cholesky() = default;
+  // A matrix that is not positive definite is an outcome the caller handles (factorize() reports
+  // it, the solver falls back to LU), not a message: CHOLMOD prints errors only.
+  Cholesky() { cholmod().print = 1; }
   Cholesky(const Cholesky&) = delete;
   Cholesky& operator=(const Cholesky&) = delete;
   ~Cholesky() {

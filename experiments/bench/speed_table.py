@@ -15,7 +15,9 @@ Environment:
     WL_CALIBRATION_STARTS  starts of the calibration row (default 4)
 
 Rows: yarn-17, fem-17, yarn-65, fem-65, fem-65-stride2 (the default, about 5 min
-with a reference), and calibrate (on request: a fit takes minutes per run).
+with a reference), and on request calibrate (a fit takes minutes per run) and
+yarn-257 (10 steps of 328 197 DoFs, about 4 GB and 2 min per run). Each run's
+peak resident memory is reported beside its step.
 "One thread" is OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 OMP_THREAD_LIMIT=1: the
 thread limit holds CHOLMOD too, whose parallel loops name their own thread count.
 """
@@ -64,7 +66,11 @@ def run_rows(tmp):
         "yarn-65": ("yarn 65×65", os.path.join(SCENES, "hanging_wind_65.toml"), "yarn", 0.004),
         "fem-65": ("FEM 65×65", os.path.join(SCENES, "hanging_wind_65.toml"), "fem", 0.01),
         "fem-65-stride2": ("FEM 65×65 stride 2", stride2_scene(tmp), "fem", 0.04),
+        "yarn-257": ("yarn 257×257", os.path.join(SCENES, "hanging_wind_257.toml"), "yarn", 0.01),
     }
+
+
+ON_REQUEST = {"calibrate", "yarn-257"}
 
 
 def measure(binary, row, env_extra, tmp, starts):
@@ -91,7 +97,8 @@ def measure(binary, row, env_extra, tmp, starts):
             j = json.load(f)
         s = j["statistics"]
         n = s["steps"]
-        facts = {"dofs": int(j["model"]["dofs"]), "fact": s["factorizations"] / n, "krylov": s["krylov_iters"] / n}
+        facts = {"dofs": int(j["model"]["dofs"]), "fact": s["factorizations"] / n, "krylov": s["krylov_iters"] / n,
+                 "peak_gb": j.get("memory", {}).get("peak_resident_bytes", float("nan")) / 1e9}
         result = (1e3 * s["wall_s"] / n, 1e3 * s["cpu_s"] / n, facts)
     shutil.rmtree(out, ignore_errors=True)
     return result
@@ -108,7 +115,7 @@ def main():
     tmp = tempfile.mkdtemp(prefix="speed_table_")
     try:
         rows = run_rows(tmp)
-        names = sys.argv[1:] or list(rows)
+        names = sys.argv[1:] or [n for n in rows if n not in ON_REQUEST]
         for n in names:
             if n not in rows and n != "calibrate":
                 fail(f"unknown row '{n}', expected one of {', '.join(list(rows) + ['calibrate'])}")
@@ -133,7 +140,8 @@ def report(names, rows, builds, samples, binary, reference, repeats, starts):
     print(f"this build: {binary}; reference: {reference or 'none'}; medians of {repeats} interleaved runs;")
     print("per be-linear step in ms (calibrate: the fit in s); wall / CPU (user + system)")
     print()
-    head = "| row | DoFs | this: wall / CPU | factorizations, GMRES its per step |"
+    head = "| row | DoFs | this: wall / CPU | factorizations, GMRES its per step | peak memory [GB]"
+    head += ": this / reference |" if reference else " |"
     if reference:
         head += " reference: wall / CPU | speed-up vs reference: wall / CPU |"
     head += " this, one thread: wall / CPU |"
@@ -145,7 +153,9 @@ def report(names, rows, builds, samples, binary, reference, repeats, starts):
         label = f"calibrate, {starts} starts (fit)" if n == "calibrate" else rows[n][0]
         dofs = str(facts["dofs"]) if "dofs" in facts else "–"
         solver = f"{facts['fact']:.2f}, {facts['krylov']:.1f}" if "fact" in facts else f"{facts['evaluations']} evaluations"
-        line = f"| {label} | {dofs} | {w:.3f} / {c:.3f} | {solver} |"
+        peak = " / ".join(f"{statistics.median(x[2]['peak_gb'] for x in samples[(n, b)]):.2f}"
+                          for b in ["this"] + (["reference"] if reference else [])) if "peak_gb" in facts else "–"
+        line = f"| {label} | {dofs} | {w:.3f} / {c:.3f} | {solver} | {peak} |"
         if reference:
             rw, rc = med[(n, "reference")]
             line += f" {rw:.3f} / {rc:.3f} | {rw / w:.2f} / {rc / c:.2f} |"

@@ -148,14 +148,15 @@ FemMaterial knit_first_guess(const Scene& test_scene, const std::vector<FitCurve
 // First guesses of the stretch law's extras from the curves (docs/calibration.md §8). A homogeneous
 // patch answers R_warp = k_u ε + (q_u + q_a)ε³, R_weft likewise and R_biaxial = (k_u + k_v + 2k_c)ε +
 // (q_u + q_v + 16q_a)ε³ (docs/models.md §6.3.1). The cubic part of a curve: least squares of
-// R = kε + cε³.
+// R = kε + cε³; 0 when the ladder cannot tell the two apart (fewer than two distinct strains).
 double cubic_part(const FitCurve& c) {
   double a11 = 0, a12 = 0, a22 = 0, b1 = 0, b2 = 0;
   for (size_t i = 0; i < c.target.size(); ++i) {
     const double e = c.test.ladder[i], e3 = e * e * e;
     a11 += e * e, a12 += e * e3, a22 += e3 * e3, b1 += e * c.target[i], b2 += e3 * c.target[i];
   }
-  return (a11 * b2 - a12 * b1) / (a11 * a22 - a12 * a12);
+  const double det = a11 * a22 - a12 * a12;
+  return det > 1e-12 * a11 * a22 ? (a11 * b2 - a12 * b1) / det : 0.0;
 }
 
 const FitCurve* find_curve(const std::vector<FitCurve>& curves, TestKind kind) {
@@ -166,7 +167,8 @@ const FitCurve* find_curve(const std::vector<FitCurve>& curves, TestKind kind) {
 
 // k_c = ½(biaxial − warp − weft secant at the first load), kept within (2 %, 90 %) of √(k_u k_v);
 // q from each uniaxial curve (else half the biaxial's), and with all three curves q_a from the
-// biaxial's excess, (c_b − c_u − c_v)/14; each at least 1 % of k over the largest strain².
+// biaxial's excess, (c_b − c_u − c_v)/14; each at least 1 % of k over the largest strain²; a
+// direction no curve informs keeps no quartic (the fit does not free it).
 void stretch_law_first_guess(const std::vector<FitCurve>& curves, bool coupling, bool stiffening, FemMaterial& m) {
   const FitCurve *u = find_curve(curves, TestKind::uniaxial_warp), *v = find_curve(curves, TestKind::uniaxial_weft),
                  *b = find_curve(curves, TestKind::biaxial);
@@ -178,6 +180,7 @@ void stretch_law_first_guess(const std::vector<FitCurve>& curves, bool coupling,
   }
   if (stiffening) {
     auto quartic = [&](const FitCurve* c, double k) {
+      if (!c && !b) return 0.0;
       const double q = c ? cubic_part(*c) : b ? 0.5 * cubic_part(*b) : 0.0, e = c ? c->test.ladder.back() : 0.1;
       return std::max(q, 0.01 * k / (e * e));
     };

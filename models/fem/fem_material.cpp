@@ -210,6 +210,20 @@ FemMaterial fem_material(const Scene& s) {
   set(m.weft_stretch_quartic_N_per_m, f.weft_stretch_quartic_N_per_m);
   set(m.areal_stretch_quartic_N_per_m, f.areal_stretch_quartic_N_per_m);
   if (f.stretch_coupling_N_per_m) m.stretch_coupling_source = s.source + ":" + std::to_string(f.stretch_coupling_line);
+  if (s.knit) {  // before the coupling bound, which needs these stiffnesses
+    // The yarn level's mass per area, whatever patch a parameter file was calibrated on.
+    if (!f.areal_density_kg_per_m2) m.areal_density_kg_per_m2 = knit_areal_density(s);
+    for (const CalibratedKey& k : kKnitCalibratedKeys)
+      if (!(m.*k.field > 0)) {
+        auto line = s.key_lines.find("fem");  // else the [cloth] table that makes it a knit
+        if (line == s.key_lines.end()) line = s.key_lines.find("cloth");
+        throw SceneError(
+            s.source, line != s.key_lines.end() ? line->second : 1, std::string("fem.") + k.name, "none",
+            "a calibrated value > 0: a knit's continuum takes its stiffnesses from `weavelab calibrate` "
+            "(--fem-params FILE or [fem] parameter_file) or from [fem]; nothing derives them from the yarn "
+            "(docs/models.md §11.9)");
+      }
+  }
   if (!stretch_law_admissible(m)) {  // docs/models.md §6.3.1: ψ convex in the strains
     const std::string& at = m.stretch_coupling_source;
     const size_t colon = at.rfind(':');
@@ -226,20 +240,6 @@ FemMaterial fem_material(const Scene& s) {
   for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) set(m.shear_knot_N_per_m[i], f.shear_knot_N_per_m[i]);
   for (size_t i = 0; i < m.shear_knots_rad.size(); ++i)  // an absent knot value: the stiffness at 0
     if (m.shear_knot_N_per_m[i] <= 0) m.shear_knot_N_per_m[i] = m.shear_N_per_m;
-  if (s.knit) {
-    // The yarn level's mass per area, whatever patch a parameter file was calibrated on.
-    if (!f.areal_density_kg_per_m2) m.areal_density_kg_per_m2 = knit_areal_density(s);
-    for (const CalibratedKey& k : kKnitCalibratedKeys)
-      if (!(m.*k.field > 0)) {
-        auto line = s.key_lines.find("fem");  // else the [cloth] table that makes it a knit
-        if (line == s.key_lines.end()) line = s.key_lines.find("cloth");
-        throw SceneError(
-            s.source, line != s.key_lines.end() ? line->second : 1, std::string("fem.") + k.name, "none",
-            "a calibrated value > 0: a knit's continuum takes its stiffnesses from `weavelab calibrate` "
-            "(--fem-params FILE or [fem] parameter_file) or from [fem]; nothing derives them from the yarn "
-            "(docs/models.md §11.9)");
-      }
-  }
   return m;
 }
 

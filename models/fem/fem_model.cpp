@@ -65,7 +65,9 @@ static const Scene& without_knit_damping(const Scene& s) {
 }
 
 FemModel::FemModel(const Scene& scene)
-    : FemModel(without_knit_damping(scene), make_fem_mesh(scene), fem_material(scene)) {}
+    // Each argument checks the damping first: its refusal does not depend on the order of evaluation.
+    : FemModel(without_knit_damping(scene), make_fem_mesh(without_knit_damping(scene)),
+               fem_material(without_knit_damping(scene))) {}
 
 FemModel::FemModel(const Scene& scene, FemMesh mesh, const FemMaterial& material)
     : scene_(scene), mesh_(std::move(mesh)), material_(material) {
