@@ -81,8 +81,9 @@ def measure(binary, row, env_extra, tmp, starts):
         cmd = [binary, "calibrate", os.path.join(SCENES, "hanging_wind.toml"), "--starts", str(starts), "--out", out]
     else:
         _, scene, model, duration = row[1]
+        # One frame at the end: older builds refuse a duration below the scene's frame interval.
         cmd = [binary, "run", scene, "--model", model, "--integrator", "be-linear", "--duration", str(duration),
-               "--out", out, "--quiet"]
+               "--output-interval", str(duration), "--out", out, "--quiet"]
     p = subprocess.run(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if p.returncode != 0:
         fail(f"{' '.join(cmd)} exited {p.returncode}: {p.stderr.strip()[-400:]}", 1)
