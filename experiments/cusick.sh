@@ -16,6 +16,8 @@
 # docs/models.md §3.11.6) so that it settles; summary.json's "settle" gives the
 # end state's largest force and kinetic energy.
 # WL_MODELS (default "yarn fem") chooses the models.
+# WL_STEP_HESSIAN (projected | exact) sets [obstacle_contact] step_hessian of the
+# drape runs (docs/models.md §3.11.2; the scene's own, else projected, when unset).
 # WL_SELF_CONTACT=1 runs the drape with cloth–cloth contact ([self_contact],
 # docs/models.md §3.11.7), into the results folder with _self appended; WL_SELF_STIFFNESS (N/m)
 # sets its κ (stiffness_N_per_m).
@@ -34,6 +36,8 @@ if [ "$self" = 0 ] && [ -n "${WL_SELF_STIFFNESS:-}" ]; then
   echo "cusick.sh: WL_SELF_STIFFNESS is set without WL_SELF_CONTACT=1" >&2; exit 2
 fi
 if [ "$self" = 1 ]; then out=${out}_self; fi
+step_hessian=${WL_STEP_HESSIAN:-}
+case $step_hessian in "" | projected | exact) ;; *) echo "cusick.sh: WL_STEP_HESSIAN: got '$step_hessian', expected projected or exact" >&2; exit 2 ;; esac
 python=/usr/bin/python3
 duration=${WL_DURATION:-0.05}
 free=${WL_FREE:-1}
@@ -48,9 +52,14 @@ text = open(sys.argv[1]).read()
 print(re.sub(r"\[\[obstacles\]\].*?(?=\n\[)", "", text, flags=re.S))
 PY
 # The drape scene as run, with the settling phase if WL_SETTLE_DT is set.
-"$python" - "$scene" "${WL_SETTLE_AFTER:-0.2}" "${WL_SETTLE_DT:-}" "$duration" "$self" "${WL_SELF_STIFFNESS:-}" <<'PY' >"$out/drape.toml"
+"$python" - "$scene" "${WL_SETTLE_AFTER:-0.2}" "${WL_SETTLE_DT:-}" "$duration" "$self" "${WL_SELF_STIFFNESS:-}" "$step_hessian" <<'PY' >"$out/drape.toml"
 import re, sys
 text, after, dt, duration = open(sys.argv[1]).read(), sys.argv[2], sys.argv[3], sys.argv[4]
+if sys.argv[7]:
+    if "[obstacle_contact]" in text:
+        print("cusick.sh: WL_STEP_HESSIAN: the scene has its own [obstacle_contact] table", file=sys.stderr)
+        sys.exit(2)
+    text += f'\n[obstacle_contact]\nstep_hessian = "{sys.argv[7]}"\n'
 if sys.argv[5] == "1":
     text += "\n[self_contact]\nenabled = true\n"
     if sys.argv[6]:

@@ -79,7 +79,8 @@
 //     friction_coefficient ≥ 0; sizes > 0, required by shape: radius_m (sphere,
 //     cylinder, disk), half_extents_m = [a, b, c] (box), height_m (cylinder),
 //     thickness_m (disk)
-//   [obstacle_contact]  activation_distance_m, stiffness_N_per_m, friction_speed_m_per_s > 0, segment_edges
+//   [obstacle_contact]  activation_distance_m, stiffness_N_per_m, friction_speed_m_per_s > 0, segment_edges,
+//     step_hessian = "projected" | "exact"
 //   [self_contact]  enabled (bool), activation_distance_m, stiffness_N_per_m > 0
 //
 // ERRORS: SceneError with file, line (source line of the offending value; for a
