@@ -194,7 +194,12 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
       if (want_d) std::fill(dl, dl + n * n, 0.0);
       if (want_m) std::fill(ml, ml + n * n, 0.0);
       term.evaluate(e, ql, vl, out);
-      if (project) project_step_stiffness(n, kl);
+      if (project) {  // over the stencil's DoFs only: a constant's rows and columns are not A's
+        for (int a = 0; a < n; ++a)
+          if (!is_dof(s[a]))
+            for (int b = 0; b < n; ++b) kl[a + n * b] = kl[b + n * a] = 0.0;
+        project_step_stiffness(n, kl);
+      }
       for (int a = 0; a < n; ++a)
         if (is_dof(s[a])) f[s[a]] += fl[a];
       const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;

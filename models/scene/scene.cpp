@@ -54,7 +54,7 @@
 //     settle_after_s ≥ 0 (< duration_s), settle_dt_s > 0 (≤ output_interval_s): fixed
 //       steps only, no error_estimate or accuracy_m
 //   [terms]       stretch, bending, shear, parallel_contact, friction, gravity, wind,
-//                 handles, inertia (bools)
+//                 handles, inertia (bools); stretch_step_hessian = "exact" | "projected"
 //   [fem]
 //     stride ≥ 1, dividing wefts−1 and warps−1; with stride > 1 every pin and
 //       handle must lie on the stride lattice (i and j multiples of stride)
@@ -530,6 +530,9 @@ void read_terms(TableReader& top, Scene& s) {
   t->read_bool("wind", w.wind);
   t->read_bool("handles", w.handles);
   t->read_bool("inertia", w.inertia);
+  int stretch_hessian = w.stretch_projected_step_hessian ? 0 : 1;
+  if (t->read_choice("stretch_step_hessian", stretch_hessian, {"projected", "exact"}))
+    w.stretch_projected_step_hessian = stretch_hessian == 0;
   t->finish();
 }
 

@@ -148,6 +148,8 @@ struct SelfContactParams {
 struct TermSwitches {
   bool stretch = true, bending = true, shear = true, parallel_contact = true, friction = true;
   bool gravity = true, wind = true, handles = true, inertia = true;
+  // stretch_step_hessian: "projected" (true) or "exact" (docs/models.md §3.2)
+  bool stretch_projected_step_hessian = false;
 };
 
 struct Scene {
