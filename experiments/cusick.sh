@@ -16,6 +16,9 @@
 # docs/models.md §3.11.6) so that it settles; summary.json's "settle" gives the
 # end state's largest force and kinetic energy.
 # WL_MODELS (default "yarn fem") chooses the models.
+# WL_STEP_HESSIAN (projected | exact) sets the step matrices' Hessians of the
+# contact barrier and the yarn stretch ([obstacle_contact] step_hessian and
+# [terms] stretch_step_hessian, docs/models.md §3.11.2, §3.2); unset: the scene's.
 # WL_SELF_CONTACT=1 runs the drape with cloth–cloth contact ([self_contact],
 # docs/models.md §3.11.7), into the results folder with _self appended; WL_SELF_STIFFNESS (N/m)
 # sets its κ (stiffness_N_per_m).
@@ -34,6 +37,8 @@ if [ "$self" = 0 ] && [ -n "${WL_SELF_STIFFNESS:-}" ]; then
   echo "cusick.sh: WL_SELF_STIFFNESS is set without WL_SELF_CONTACT=1" >&2; exit 2
 fi
 if [ "$self" = 1 ]; then out=${out}_self; fi
+step_hessian=${WL_STEP_HESSIAN:-}
+case $step_hessian in "" | projected | exact) ;; *) echo "cusick.sh: WL_STEP_HESSIAN: got '$step_hessian', expected projected or exact" >&2; exit 2 ;; esac
 python=/usr/bin/python3
 duration=${WL_DURATION:-0.05}
 free=${WL_FREE:-1}
@@ -42,13 +47,26 @@ if [ -n "${WL_LINEAR_SOLVER:-}" ]; then extra=(--linear-solver "$WL_LINEAR_SOLVE
 if [ -n "${WL_OUTPUT_INTERVAL:-}" ]; then extra+=(--output-interval "$WL_OUTPUT_INTERVAL"); fi
 tools/setup.sh
 mkdir -p "$out"
-"$python" - "$scene" <<'PY' >"$out/free.toml"
+# The scene with WL_STEP_HESSIAN's choice for the barrier and the yarn stretch.
+"$python" - "$scene" "$step_hessian" <<'PY' >"$out/scene.toml"
+import re, sys
+text, choice = open(sys.argv[1]).read(), sys.argv[2]
+if choice:
+    if "[obstacle_contact]" in text or not re.search(r"^stretch_step_hessian = ", text, flags=re.M):
+        print("cusick.sh: WL_STEP_HESSIAN needs a scene without [obstacle_contact] and with"
+              " [terms] stretch_step_hessian", file=sys.stderr)
+        sys.exit(2)
+    text = re.sub(r"^stretch_step_hessian = .*$", f'stretch_step_hessian = "{choice}"', text, flags=re.M)
+    text += f'\n[obstacle_contact]\nstep_hessian = "{choice}"\n'
+print(text)
+PY
+"$python" - "$out/scene.toml" <<'PY' >"$out/free.toml"
 import re, sys
 text = open(sys.argv[1]).read()
 print(re.sub(r"\[\[obstacles\]\].*?(?=\n\[)", "", text, flags=re.S))
 PY
 # The drape scene as run, with the settling phase if WL_SETTLE_DT is set.
-"$python" - "$scene" "${WL_SETTLE_AFTER:-0.2}" "${WL_SETTLE_DT:-}" "$duration" "$self" "${WL_SELF_STIFFNESS:-}" <<'PY' >"$out/drape.toml"
+"$python" - "$out/scene.toml" "${WL_SETTLE_AFTER:-0.2}" "${WL_SETTLE_DT:-}" "$duration" "$self" "${WL_SELF_STIFFNESS:-}" <<'PY' >"$out/drape.toml"
 import re, sys
 text, after, dt, duration = open(sys.argv[1]).read(), sys.argv[2], sys.argv[3], sys.argv[4]
 if sys.argv[5] == "1":

@@ -28,7 +28,8 @@ StepResult BackwardEuler::step_linear(double h, int* iters) {
   if (!have_mass_ && !model_->mass_depends_on_q()) model_->evaluate(t_, q_, v_, kMass, ev_);
   have_mass_ = true;
   const bool mass_known = !model_->mass_depends_on_q();
-  // A = M − hD − h²K and r = f + hKv₀; the sensitivities need K and D apart.
+  // A = M − hD − h²K and r = f + hKv₀ (K with the projected step stiffness,
+  // docs/models.md §3.11.2); the sensitivities need K and D apart (and exact).
   const StepWeights weights{.mass = 1.0,
                             .dfdv = -h,
                             .dfdq = -h * h,
@@ -59,7 +60,7 @@ StepResult BackwardEuler::step_linear(double h, int* iters) {
 StepResult BackwardEuler::step_newton(double h, int* iters) {
   const Vec q0 = q_, v0 = v_;
   // M(q₀) and the first Jacobian come from the start of the step.
-  model_->evaluate(t_, q0, v0, kForce | kDfdq | kDfdv | kMass, ev_);
+  model_->evaluate(t_, q0, v0, kForce | kDfdq | kStepStiffness | kDfdv | kMass, ev_);
   ++stats_.rhs_evals;
   ++stats_.jac_evals;
   const SparseMatrix m0 = ev_.mass;
@@ -70,7 +71,7 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
   };
   // Initial guess v₁ = v₀, evaluated at the end-of-step position q₀ + h v₀.
   Vec g;
-  model_->evaluate(t_ + h, q0 + h * v, v, kForce | kDfdq | kDfdv, ev_);
+  model_->evaluate(t_ + h, q0 + h * v, v, kForce | kDfdq | kStepStiffness | kDfdv, ev_);
   ++stats_.rhs_evals;
   ++stats_.jac_evals;
   residual(v, g);
@@ -93,7 +94,7 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
     Vec v_try, g_try;
     for (int ls = 0; ls < 10; ++ls) {
       v_try = v + alpha * dv;
-      model_->evaluate(t_ + h, q0 + h * v_try, v_try, kForce | kDfdq | kDfdv, ev_);
+      model_->evaluate(t_ + h, q0 + h * v_try, v_try, kForce | kDfdq | kStepStiffness | kDfdv, ev_);
       ++stats_.rhs_evals;
       ++stats_.jac_evals;
       residual(v_try, g_try);

@@ -55,6 +55,11 @@ void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, con
   if (!sensitivity_keys_.empty()) {
     if (!offers_sensitivities())
       throw std::invalid_argument("integrator '" + name() + "' does not offer parameter sensitivities");
+    if (model.projects_step_stiffness())  // they differentiate the step with the exact ∂f/∂q
+      throw std::invalid_argument(
+          "parameter sensitivities need the exact step matrix; this scene projects a term's Hessian in it: set "
+          "[obstacle_contact] step_hessian = \"exact\" and [terms] stretch_step_hessian = \"exact\" "
+          "(docs/models.md §3.11.2, §3.2)");
     const std::vector<std::string> known = model.parameter_keys();
     for (const std::string& key : sensitivity_keys_)
       if (std::find(known.begin(), known.end(), key) == known.end())

@@ -40,7 +40,7 @@ void Sdirk2::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, c
 }
 
 StepResult Sdirk2::refresh_matrix(double t, double h, const Vec& q, const Vec& v) {
-  model_->evaluate(t, q, v, kForce | kDfdq | kDfdv | kMass, jac_);
+  model_->evaluate(t, q, v, kForce | kDfdq | kStepStiffness | kDfdv | kMass, jac_);
   ++stats_.rhs_evals;
   ++stats_.jac_evals;
   const double gh = kGamma * h, gh2 = gh * gh;

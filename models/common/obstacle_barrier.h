@@ -39,6 +39,11 @@ class ObstacleBarrierTerm : public StencilTerm<3> {
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
+  // The step matrix takes κ(b''∇d∇dᵀ + b'∇²d) projected to its positive
+  // semi-definite part (docs/models.md §3.11.2; [obstacle_contact] step_hessian).
+  void set_projected_step_stiffness(bool on) { projected_ = on; }
+  bool projects_step_stiffness() const override { return projected_; }
+
   bool constrains_steps() const override { return true; }
   // Smallest over the elements of the fraction of the straight move from
   // `from` to `to` over which every node stays farther than
@@ -57,6 +62,7 @@ class ObstacleBarrierTerm : public StencilTerm<3> {
  private:
   std::shared_ptr<const std::vector<Obstacle>> obstacles_;
   double dhat_, kappa_, t_ = 0.0;
+  bool projected_ = false;
   std::vector<int> node_, obstacle_;
 };
 

@@ -35,6 +35,7 @@ ObstacleContact::ObstacleContact(const Scene& scene, const ObstacleContactRule& 
   auto barrier = std::make_unique<ObstacleBarrierTerm>(obstacles_, dhat, kappa);
   auto friction = std::make_unique<ObstacleFrictionTerm>(obstacles_, dhat, kappa, rule.friction_speed_m_per_s);
   auto edge = std::make_unique<ObstacleEdgeTerm>(obstacles_, dhat, kappa);
+  barrier->set_projected_step_stiffness(scene.obstacle_contact.projected_step_hessian);
   for (int k = 0; k < static_cast<int>(obstacles->size()); ++k) {
     const Obstacle& o = (*obstacles)[k];
     for (int n = 0; n < static_cast<int>(node_x.size()); ++n) {

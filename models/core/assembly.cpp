@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "models/core/step_stiffness.h"
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -164,6 +166,8 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
   double* mv = want_m && !step ? mass->valuePtr() : nullptr;
   double* av = step ? dfdq->valuePtr() : nullptr;
   const Vec* w = step && step->rhs_dfdq != 0.0 && req.dfdq_w ? step->w : nullptr;
+  // The step matrix's K_e (and the right-hand side's K_e w_e) projected, docs/models.md §3.11.2.
+  const bool project = want_k && (step || req.step_stiffness) && term.projects_step_stiffness();
 
   auto run_range = [&](int begin, int end) {
     thread_local std::vector<double> buf;  // q, v, w, f; dfdq, dfdv, mass (kept: no allocation per evaluation)
@@ -190,6 +194,12 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
       if (want_d) std::fill(dl, dl + n * n, 0.0);
       if (want_m) std::fill(ml, ml + n * n, 0.0);
       term.evaluate(e, ql, vl, out);
+      if (project) {  // over the stencil's DoFs only: a constant's rows and columns are not A's
+        for (int a = 0; a < n; ++a)
+          if (!is_dof(s[a]))
+            for (int b = 0; b < n; ++b) kl[a + n * b] = kl[b + n * a] = 0.0;
+        project_step_stiffness(n, kl);
+      }
       for (int a = 0; a < n; ++a)
         if (is_dof(s[a])) f[s[a]] += fl[a];
       const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;

@@ -30,6 +30,9 @@ struct AssemblyRequest {
   // ≠ 0, K_e·w_e into *dfdq_w. The flags above are then ignored.
   const StepWeights* step = nullptr;
   Vec* dfdq_w = nullptr;
+  // ∂f/∂q for a step matrix formed apart (kStepStiffness): the terms that
+  // project their step stiffness do, as they do with `step`.
+  bool step_stiffness = false;
 };
 
 class Assembly {

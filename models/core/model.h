@@ -25,6 +25,9 @@ enum EvalFlags : unsigned {
   // split: request it without these bits.
   kExplicitTerms = 16u,
   kImplicitTerms = 32u,
+  // ∂f/∂q for an integrator's step (or Newton) matrix: the terms that project
+  // their step stiffness (Term::projects_step_stiffness) give it projected.
+  kStepStiffness = 64u,
 };
 
 struct Evaluation {
@@ -80,9 +83,12 @@ class Model {
   // The implicit step's matrix `a` and right-hand side `r` at (t, q, v) with
   // the weights `w` (StepWeights); `scratch` is reused between calls and
   // holds the force f afterwards (its matrices are not meaningful). The
-  // default evaluates M, ∂f/∂q and ∂f/∂v and combines them (form_step).
+  // default evaluates M, ∂f/∂q (kStepStiffness) and ∂f/∂v and combines them (form_step).
   virtual void evaluate_step(double t, const Vec& q, const Vec& v, const StepWeights& w, Evaluation& scratch,
                              SparseMatrix& a, Vec& r);
+  // Whether kStepStiffness (and evaluate_step) changes ∂f/∂q: some term
+  // projects its step stiffness. Forward sensitivities need the exact one.
+  virtual bool projects_step_stiffness() const { return false; }
   // Potential energy of the conservative terms.
   virtual double potential_energy(const Vec& q) const = 0;
   // History update after an accepted step of size h ending at (t, q, v).

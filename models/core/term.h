@@ -58,6 +58,13 @@ class Term {
   // symmetric (docs/design.md §6.3): true for a potential's force (K = −∇²E)
   // that reads nothing frozen from the force of stage 0.
   virtual bool symmetric_jacobian() const { return conservative() && !has_velocity_jacobian() && stage() == 0; }
+  // Whether an integrator's step matrix takes this term's stiffness projected
+  // to the positive semi-definite part of −K_e (project_step_stiffness,
+  // docs/models.md §3.11.2): only the assembly of a step matrix does it
+  // (AssemblyRequest::step, kStepStiffness); the force and every other ∂f/∂q
+  // (finite-difference checks, sensitivities, equilibria) stay exact. A term
+  // that says true has a symmetric K_e.
+  virtual bool projects_step_stiffness() const { return false; }
   // IMEX split (arkode-imex): true for non-stiff external forces (gravity,
   // wind) that an additive Runge–Kutta method treats explicitly.
   virtual bool imex_explicit() const { return false; }

@@ -13,7 +13,7 @@ void allocate_evaluation(const Model& model, Evaluation& out) {
 
 void Model::evaluate_step(double t, const Vec& q, const Vec& v, const StepWeights& w, Evaluation& scratch,
                           SparseMatrix& a, Vec& r) {
-  evaluate(t, q, v, kForce | kDfdq | kDfdv | (w.constant_mass ? 0u : kMass), scratch);
+  evaluate(t, q, v, kForce | kDfdq | kStepStiffness | kDfdv | (w.constant_mass ? 0u : kMass), scratch);
   form_step(scratch, w, a, &r);
 }
 
@@ -70,6 +70,7 @@ void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, E
   if (out.force.size() != num_dofs_) allocate_evaluation(*this, out);
   out.force.setZero();
   AssemblyRequest req{(flags & kDfdq) != 0, (flags & kDfdv) != 0, (flags & kMass) != 0};
+  req.step_stiffness = (flags & kStepStiffness) != 0;
   if (flags & kExplicitTerms) req.filter = TermFilter::explicit_only;
   else if (flags & kImplicitTerms) req.filter = TermFilter::implicit_only;
   else if (flags == kMass) req.filter = TermFilter::mass_only;
@@ -163,6 +164,10 @@ double TermModel::potential_energy(const Vec& q) const { return assembly_->energ
 void TermModel::accept_step(double t, const Vec& q, const Vec& v, double h) {
   EvalContext ctx{t, &q, &v, nullptr};
   for (auto& term : terms_) term->accept_step(ctx, h);
+}
+
+bool TermModel::projects_step_stiffness() const {
+  return std::any_of(terms_.begin(), terms_.end(), [](const auto& t) { return t->projects_step_stiffness(); });
 }
 
 bool TermModel::constrains_steps() const {

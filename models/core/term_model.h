@@ -22,6 +22,7 @@ class TermModel : public Model {
                      Vec& r) override;
   double potential_energy(const Vec& q) const override;
   void accept_step(double t, const Vec& q, const Vec& v, double h) override;
+  bool projects_step_stiffness() const override;
   bool constrains_steps() const override;
   double admissible_fraction(double t0, const Vec& q0, double t1, const Vec& q1) const override;
   std::vector<std::string> parameter_keys() const override;

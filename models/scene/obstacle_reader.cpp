@@ -100,6 +100,9 @@ void read_obstacles(TableReader& top, Scene& s) {
   c->read_number("stiffness_N_per_m", p.stiffness_N_per_m, "a number > 0 (N/m)", positive);
   c->read_number("friction_speed_m_per_s", p.friction_speed_m_per_s, "a number > 0 (m/s)", positive);
   c->read_bool("segment_edges", p.segment_edges);
+  int step_hessian = p.projected_step_hessian ? 0 : 1;
+  if (c->read_choice("step_hessian", step_hessian, {"projected", "exact"}))
+    p.projected_step_hessian = step_hessian == 0;
   c->finish();
 }
 

@@ -54,7 +54,7 @@
 //     settle_after_s ≥ 0 (< duration_s), settle_dt_s > 0 (≤ output_interval_s): fixed
 //       steps only, no error_estimate or accuracy_m
 //   [terms]       stretch, bending, shear, parallel_contact, friction, gravity, wind,
-//                 handles, inertia (bools)
+//                 handles, inertia (bools); stretch_step_hessian = "exact" | "projected"
 //   [fem]
 //     stride ≥ 1, dividing wefts−1 and warps−1; with stride > 1 every pin and
 //       handle must lie on the stride lattice (i and j multiples of stride)
@@ -79,7 +79,8 @@
 //     friction_coefficient ≥ 0; sizes > 0, required by shape: radius_m (sphere,
 //     cylinder, disk), half_extents_m = [a, b, c] (box), height_m (cylinder),
 //     thickness_m (disk)
-//   [obstacle_contact]  activation_distance_m, stiffness_N_per_m, friction_speed_m_per_s > 0, segment_edges
+//   [obstacle_contact]  activation_distance_m, stiffness_N_per_m, friction_speed_m_per_s > 0, segment_edges,
+//     step_hessian = "projected" | "exact"
 //   [self_contact]  enabled (bool), activation_distance_m, stiffness_N_per_m > 0
 //
 // ERRORS: SceneError with file, line (source line of the offending value; for a
@@ -529,6 +530,9 @@ void read_terms(TableReader& top, Scene& s) {
   t->read_bool("wind", w.wind);
   t->read_bool("handles", w.handles);
   t->read_bool("inertia", w.inertia);
+  int stretch_hessian = w.stretch_projected_step_hessian ? 0 : 1;
+  if (t->read_choice("stretch_step_hessian", stretch_hessian, {"projected", "exact"}))
+    w.stretch_projected_step_hessian = stretch_hessian == 0;
   t->finish();
 }
 

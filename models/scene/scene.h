@@ -133,6 +133,7 @@ struct ObstacleContactParams {
   std::optional<double> stiffness_N_per_m;      // κ
   double friction_speed_m_per_s = 1e-3;         // ε_v of the smoothed Coulomb law
   bool segment_edges = false;                   // segments kept off sharp edges (§3.11.10)
+  bool projected_step_hessian = true;           // step_hessian: "projected" (true) or "exact" (§3.11.2)
 };
 
 // Cloth–cloth contact (docs/models.md §3.11.7), off unless enabled; absent
@@ -147,6 +148,8 @@ struct SelfContactParams {
 struct TermSwitches {
   bool stretch = true, bending = true, shear = true, parallel_contact = true, friction = true;
   bool gravity = true, wind = true, handles = true, inertia = true;
+  // stretch_step_hessian: "projected" (true) or "exact" (docs/models.md §3.2)
+  bool stretch_projected_step_hessian = false;
 };
 
 struct Scene {

@@ -129,6 +129,7 @@ void YarnModel::add_inertia() {
 // Stretch, docs/models.md §3.2.
 void YarnModel::add_stretch() {
   auto t = std::make_unique<StretchTerm>();
+  t->set_projected_step_stiffness(scene_.terms.stretch_projected_step_hessian);
   for (const Segment& s : segments_) {
     t->add(segment_stencil(s), s.ks);
     t->tag_last(yarn_type_key(s.type, kStretchModulusField), yarn_type(s.type).stretch_modulus_Pa);

@@ -7,11 +7,13 @@
 #include <numbers>
 #include <random>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "models/common/obstacle.h"
 #include "models/common/obstacle_barrier.h"
 #include "models/common/obstacle_friction.h"
+#include "models/core/step_stiffness.h"
 #include "tests/support/fd_check.h"
 #include "tests/support/obstacle_meshes.h"
 
@@ -97,6 +99,59 @@ TEST(ObstacleBarrier, NearItsLimitMatchesFiniteDifferences) {
     auto r = test::check_element(term, 0, {{{x.x(), x.y(), x.z()}, {0, 0, 0}}}, opt);
     EXPECT_TRUE(r.ok) << "d = " << d << ": " << r.detail;
   }
+}
+
+// The step stiffness (docs/models.md §3.11.2): with the projection on, the
+// term's own ∂f/∂q is still the exact one (FD checker); the projected block
+// −K̃ is positive semi-definite, equal to −K where that is, and otherwise
+// keeps −K's positive eigenpairs and drops the rest. On a sphere
+// −K = κ b'' g gᵀ + κ (b'/r)(I − g gᵀ) with b' < 0, so −K̃ = κ b'' g gᵀ.
+TEST(ObstacleBarrier, StepStiffnessIsThePsdPartOfTheExactHessian) {
+  int psd = 0, indefinite = 0;
+  for (const Case& c : shape_cases()) {
+    ObstacleBarrierTerm term(one(c.spec), kDhat, kKappa);
+    term.set_projected_step_stiffness(true);
+    term.add({0, 1, 2}, 0, 0);
+    term.prepare(EvalContext{0.0});
+    for (const Vec3& p : c.local_points) {
+      const Vec3 x = world(c.spec, p);
+      const double d = term.obstacle(0).signed_distance(x, 0.0);
+      test::FdOptions opt;
+      opt.rel_step = 1e-6 * d / std::max(x.maxCoeff() - x.minCoeff(), 1e-12);
+      opt.jitter = 0.05 * d / std::max(x.maxCoeff() - x.minCoeff(), 1e-12);
+      const auto r = test::check_element(term, 0, {{{x.x(), x.y(), x.z()}, {0, 0, 0}}}, opt);
+      EXPECT_TRUE(r.ok) << r.detail;
+      Vec3 f = Vec3::Zero();
+      const Vec3 v = Vec3::Zero();
+      Mat3 k = Mat3::Zero();
+      term.evaluate(0, x.data(), v.data(), ElementOutput{f.data(), k.data()});
+      Mat3 kp = k;
+      project_step_stiffness(3, kp.data());
+      const Eigen::SelfAdjointEigenSolver<Mat3> exact(-k);
+      const double scale = exact.eigenvalues().cwiseAbs().maxCoeff();
+      ASSERT_GT(scale, 0.0);
+      const Vec3 lp = Eigen::SelfAdjointEigenSolver<Mat3>(-kp).eigenvalues();
+      EXPECT_GE(lp.minCoeff(), -1e-12 * scale);
+      if (exact.eigenvalues().minCoeff() >= 0.0) {
+        EXPECT_EQ(kp, k);
+        ++psd;
+        continue;
+      }
+      ++indefinite;
+      EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat3>(k - kp).eigenvalues().minCoeff(), -1e-12 * scale);  // −K̃ ⪰ −K
+      for (int i = 0; i < 3; ++i) {
+        const double l = exact.eigenvalues()[i];
+        const Vec3 u = exact.eigenvectors().col(i);
+        EXPECT_LT((-kp * u - std::max(l, 0.0) * u).norm(), 1e-10 * scale);
+      }
+      if (c.spec.shape != ObstacleSpec::Shape::sphere) continue;
+      const Vec3 g = (x - Vec3(c.spec.center_m[0], c.spec.center_m[1], c.spec.center_m[2])).normalized();
+      const Mat3 expected = -kKappa * contact_barrier(d, kDhat).d2b * g * g.transpose();
+      EXPECT_LT((kp - expected).norm(), 1e-9 * expected.norm());
+    }
+  }
+  EXPECT_GT(psd, 0);         // the plane, flat faces
+  EXPECT_GT(indefinite, 0);  // the sphere, edges, rims
 }
 
 TEST(ObstacleBarrier, IsZeroBeyondDhatC2ThereAndUnboundedAtContact) {

@@ -21,8 +21,8 @@ void check_single_pass(const std::string& model_name, const std::string& extra_t
   auto model = test::advanced_model(model_name, extra_toml, q, v);
   const double t = 0.02;
 
-  Evaluation parts;
-  model->evaluate(t, q, v, kForce | kDfdq | kDfdv | kMass, parts);
+  Evaluation parts;  // with the step stiffness: a term that projects it does so in both routes
+  model->evaluate(t, q, v, kForce | kDfdq | kStepStiffness | kDfdv | kMass, parts);
   const SparseMatrix expected = parts.mass - kH * parts.dfdv - kH * kH * parts.dfdq;
   const Vec expected_r = parts.force + kH * (parts.dfdq * v);
   // Every part matters: each is far above the tolerance, so a dropped term or
@@ -59,6 +59,23 @@ TEST(StepMatrix, SinglePassEqualsPartsFem) { check_single_pass("fem"); }
 // With exact_contact_jacobian the yarn model adds the contact chain after the
 // stages and evaluates the parts apart (Model::evaluate_step's default).
 TEST(StepMatrix, TwoPassRouteWithContactChain) { check_single_pass("yarn", "exact_contact_jacobian = true\n"); }
+
+// The yarn stretch's step stiffness projected (docs/models.md §3.2): some
+// segment of the hanging cloth is compressed, so the projection changes ∂f/∂q,
+// and both routes form the same projected A.
+TEST(StepMatrix, BothRoutesProjectTheStretchAlike) {
+  for (const char* chain : {"", "exact_contact_jacobian = true\n"}) {
+    const std::string toml = std::string(chain) + "[terms]\nstretch_step_hessian = \"projected\"\n";
+    check_single_pass("yarn", toml);
+    Vec q, v;
+    auto model = test::advanced_model("yarn", toml, q, v);
+    ASSERT_TRUE(model->projects_step_stiffness());
+    Evaluation exact, projected;
+    model->evaluate(0.02, q, v, kDfdq, exact);
+    model->evaluate(0.02, q, v, kDfdq | kStepStiffness, projected);
+    EXPECT_GT(max_abs(SparseMatrix(exact.dfdq - projected.dfdq)), 1e-6 * max_abs(exact.dfdq));
+  }
+}
 
 }  // namespace
 }  // namespace wl

@@ -432,7 +432,7 @@ TEST(SceneParse, ObstaclesAndTheirContact) {
       "[[obstacles]]\nshape = \"box\"\ncenter_m = [1, 2, 3]\nhalf_extents_m = [0.1, 0.2, 0.3]\n"
       "[[obstacles]]\nshape = \"disk\"\ncenter_m = [0, 0, 0]\nradius_m = 0.02\nthickness_m = 0.004\n"
       "[obstacle_contact]\nactivation_distance_m = 0.0002\nstiffness_N_per_m = 3.5\nfriction_speed_m_per_s = 0.01\n"
-      "segment_edges = true\n",
+      "segment_edges = true\nstep_hessian = \"exact\"\n",
       "o.toml");
   ASSERT_EQ(s.obstacles.size(), 3u);
   EXPECT_EQ(s.obstacles[0].shape, ObstacleSpec::Shape::plane);
@@ -447,8 +447,10 @@ TEST(SceneParse, ObstaclesAndTheirContact) {
   EXPECT_EQ(*s.obstacle_contact.stiffness_N_per_m, 3.5);
   EXPECT_EQ(s.obstacle_contact.friction_speed_m_per_s, 0.01);
   EXPECT_TRUE(s.obstacle_contact.segment_edges);
-  EXPECT_FALSE(
-      parse_scene("[[obstacles]]\nshape = \"plane\"\ncenter_m = [0, 0, 0]\n", "p.toml").obstacle_contact.segment_edges);
+  EXPECT_FALSE(s.obstacle_contact.projected_step_hessian);
+  const Scene plane = parse_scene("[[obstacles]]\nshape = \"plane\"\ncenter_m = [0, 0, 0]\n", "p.toml");
+  EXPECT_FALSE(plane.obstacle_contact.segment_edges);
+  EXPECT_TRUE(plane.obstacle_contact.projected_step_hessian);
 }
 
 TEST(SceneErrors, ObstacleShapeSizesAndRequiredKeys) {
@@ -471,6 +473,8 @@ TEST(SceneErrors, ObstacleShapeSizesAndRequiredKeys) {
                "obstacles[0].friction_coefficient", "a number ≥ 0");
   expect_error("[obstacle_contact]\nactivation_distance_m = 0\n", 2, "obstacle_contact.activation_distance_m",
                "a number > 0");
+  expect_error("[obstacle_contact]\nstep_hessian = \"psd\"\n", 2, "obstacle_contact.step_hessian",
+               "one of \"projected\", \"exact\"");
 }
 
 // Self-contact (docs/models.md §3.11.7): off by default, every key read,

@@ -4,6 +4,9 @@
 
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+
+#include "models/core/step_stiffness.h"
 #include "models/yarn/terms/stretch.h"
 #include "tests/support/fd_check.h"
 
@@ -53,6 +56,41 @@ TEST(StretchTerm, FiniteDifferencesAtMillimetreScale) {
   opt.floor = 1e-14;
   const auto r = test::check_element(t, 0, states, opt);
   EXPECT_TRUE(r.ok) << r.detail;
+}
+
+// The step stiffness (docs/models.md §3.2): V = ½ k_s (‖x‖ − Δu)²/Δu is convex
+// where the segment is stretched, so the projection leaves −K as it is; a
+// compressed segment's −K is indefinite (its geometric stiffness), and the
+// projection keeps its positive eigenpairs only. The force is untouched.
+TEST(StretchTerm, StepStiffnessDropsACompressedSegmentsNegativeStiffnessOnly) {
+  StretchTerm t = one_segment(2.5);
+  t.set_projected_step_stiffness(true);
+  EXPECT_TRUE(t.projects_step_stiffness());
+  using Mat8 = Eigen::Matrix<double, 8, 8>;
+  for (const bool compressed : {false, true}) {
+    const std::vector<double> q = compressed ? std::vector<double>{0.5, 0.5, 0.5, 0.8, 0.6, 0.4, 1.0, 2.5}
+                                             : std::vector<double>{0.1, -0.2, 0.3, 1.2, 0.9, 0.8, -0.4, 0.8};
+    Eigen::Matrix<double, 8, 1> f = Eigen::Matrix<double, 8, 1>::Zero();
+    const std::vector<double> v(8, 0.0);
+    Mat8 k = Mat8::Zero();
+    t.evaluate(0, q.data(), v.data(), ElementOutput{f.data(), k.data()});
+    EXPECT_EQ(f, force(t, q));
+    Mat8 kp = k;
+    project_step_stiffness(8, kp.data());
+    const Eigen::SelfAdjointEigenSolver<Mat8> exact(-k);
+    const double scale = exact.eigenvalues().cwiseAbs().maxCoeff();
+    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Mat8>(-kp).eigenvalues().minCoeff(), -1e-12 * scale);
+    if (!compressed) {
+      EXPECT_GE(exact.eigenvalues().minCoeff(), -1e-12 * scale);
+      EXPECT_LT((kp - k).norm(), 1e-12 * scale);
+      continue;
+    }
+    EXPECT_LT(exact.eigenvalues().minCoeff(), -0.1 * scale);
+    for (int i = 0; i < 8; ++i) {
+      const auto u = exact.eigenvectors().col(i);
+      EXPECT_LT((-kp * u - std::max(exact.eigenvalues()[i], 0.0) * u).norm(), 1e-10 * scale);
+    }
+  }
 }
 
 TEST(StretchTerm, ZeroForceAndEnergyAtRest) {

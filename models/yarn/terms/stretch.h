@@ -26,6 +26,11 @@ class StretchTerm : public ProportionalParameterTerm<8> {
   std::unique_ptr<Term> clone() const override { return std::make_unique<StretchTerm>(*this); }
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+  // The step matrix takes the element's stiffness projected to its positive
+  // semi-definite part, which drops a compressed segment's negative geometric
+  // stiffness (docs/models.md §3.2; [terms] stretch_step_hessian).
+  void set_projected_step_stiffness(bool on) { projected_ = on; }
+  bool projects_step_stiffness() const override { return projected_; }
 
   // Reusable element kernels (no allocation, thread-safe). q = (x0, x1, u0, u1).
   static double local_energy(const double* q, double ks);
@@ -36,6 +41,7 @@ class StretchTerm : public ProportionalParameterTerm<8> {
 
  private:
   std::vector<double> ks_;
+  bool projected_ = false;
 };
 
 }  // namespace wl
