@@ -1,11 +1,14 @@
 // The knit terms (docs/models.md §11.4–§11.5) and the periodic image wrapper
 // (§11.3): analytic forces and Jacobians against finite differences, the roll
-// angle's sign and rest, the wrapper's shift.
+// angle's sign and rest, the roll through a degenerate triangle (§11.4.1; one
+// be-newton run across it), the wrapper's shift.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "integrators/integrator.h"
+#include "models/core/term_model.h"
 #include "models/knit/image_term.h"
 #include "models/knit/terms/stitch_compression.h"
 #include "models/knit/terms/stitch_length.h"
@@ -13,6 +16,7 @@
 #include "models/knit/terms/yarn_compression.h"
 #include "models/yarn/terms/stretch.h"
 #include "tests/support/fd_check.h"
+#include "tests/support/node_mass.h"
 
 namespace wl {
 namespace {
@@ -166,6 +170,62 @@ TEST(StitchRollTerm, ForceVanishesThroughADegenerateTriangle) {
   const std::vector<double> f = roll_force(t, on);
   for (double x : f) EXPECT_TRUE(std::isfinite(x));
   EXPECT_LT(norm(f), 1e-6 * scale);
+}
+
+// One stitch whose leg node x5 (mass m) flies across the segment's line at
+// speed w, x0, x1 and x3 held, the roll 1 rad from its rest: the free 12 × 12
+// stockinette's failure at 292 ms in miniature (docs/models.md §11.4.1). With
+// the source's roll energy this run gains energy from its second step on (4 %
+// by the crossing): its force grows as 1/distance to the line and flips there.
+class RollingLeg : public TermModel {
+ public:
+  RollingLeg(double m, double w) {
+    num_dofs_ = 12;
+    std::vector<double> q = stitch_state(0.0);
+    const Vec3 x0(q[0], q[1], q[2]), x1(q[3], q[4], q[5]);
+    const Vec3 on_line = x1 + 1.5 * (x1 - x0), off = Vec3(1, 0, 0);
+    const std::vector<double> rest = q;
+    for (int k = 0; k < 3; ++k) q[9 + k] = on_line[k] + 0.2e-3 * off[k];
+    q0_ = Eigen::Map<const Vec>(q.data(), 12);
+    v0_ = Vec::Zero(12);
+    v0_.segment<3>(9) = -w * off;
+    terms_.push_back(std::make_unique<test::NodeMassTerm>(4, m));
+    auto roll = std::make_unique<StitchRollTerm>();
+    roll->add(identity12(), 1e-5, 1e-3, StitchRollTerm::angle(rest.data()) + 1.0, StitchRollTerm::opening(rest.data()));
+    terms_.push_back(std::move(roll));
+    for (int i = 0; i < 9; ++i) fixed_.push_back(i);
+    finalize();
+  }
+  std::unique_ptr<Model> clone() const override { return std::make_unique<RollingLeg>(*this); }
+  std::string name() const override { return "rolling-leg"; }
+  bool mass_depends_on_q() const override { return false; }
+  Frame frame(double t, const Vec&, const Vec&) const override {
+    Frame f;
+    f.time = t;
+    return f;
+  }
+  std::map<std::string, std::string> describe() const override { return {}; }
+};
+
+TEST(StitchRollDynamics, BeNewtonCarriesALegNodeThroughTheSegmentsLine) {
+  const double m = 1e-6, w = 0.37, h = 1e-4;
+  RollingLeg model(m, w);
+  auto integ = make_integrator("be-newton");
+  IntegratorOptions opt;
+  opt.dt = h;
+  integ->initialize(model, 0.0, model.initial_q(), model.initial_v(), opt);
+  auto energy = [&](const Vec& q, const Vec& v) { return model.potential_energy(q) + 0.5 * m * v.squaredNorm(); };
+  double e_prev = energy(model.initial_q(), model.initial_v());
+  const double x_line = model.initial_q()[9] - 0.2e-3;
+  for (int k = 1; k <= 10; ++k) {
+    const StepResult r = integ->advance_to(k * h);
+    ASSERT_EQ(r.outcome, Outcome::ok) << "step " << k << ": " << r.message;
+    const double e = energy(integ->q(), integ->v());
+    EXPECT_LE(e, e_prev * (1.0 + 1e-9)) << "step " << k << ": backward Euler gained energy";
+    e_prev = e;
+  }
+  EXPECT_LT(integ->q()[9], x_line - 0.1e-3) << "the leg node should have crossed the segment's line";
+  EXPECT_EQ(integ->stats().rejected_steps, 0) << "no step should need halving";
 }
 
 TEST(StitchLengthTerm, ForcesAndJacobiansMatchFiniteDifferences) {
