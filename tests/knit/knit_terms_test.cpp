@@ -8,7 +8,6 @@
 #include <cmath>
 
 #include "integrators/integrator.h"
-#include "models/core/term_model.h"
 #include "models/knit/image_term.h"
 #include "models/knit/terms/stitch_compression.h"
 #include "models/knit/terms/stitch_length.h"
@@ -177,9 +176,9 @@ TEST(StitchRollTerm, ForceVanishesThroughADegenerateTriangle) {
 // stockinette's failure at 292 ms in miniature (docs/models.md §11.4.1). With
 // the source's roll energy this run gains energy from its second step on (4 %
 // by the crossing): its force grows as 1/distance to the line and flips there.
-class RollingLeg : public TermModel {
+class RollingLeg : public test::HandBuiltModel<RollingLeg> {
  public:
-  RollingLeg(double m, double w) {
+  RollingLeg(double m, double w) : HandBuiltModel("rolling-leg") {
     num_dofs_ = 12;
     std::vector<double> q = stitch_state(0.0);
     const Vec3 x0(q[0], q[1], q[2]), x1(q[3], q[4], q[5]);
@@ -196,15 +195,6 @@ class RollingLeg : public TermModel {
     for (int i = 0; i < 9; ++i) fixed_.push_back(i);
     finalize();
   }
-  std::unique_ptr<Model> clone() const override { return std::make_unique<RollingLeg>(*this); }
-  std::string name() const override { return "rolling-leg"; }
-  bool mass_depends_on_q() const override { return false; }
-  Frame frame(double t, const Vec&, const Vec&) const override {
-    Frame f;
-    f.time = t;
-    return f;
-  }
-  std::map<std::string, std::string> describe() const override { return {}; }
 };
 
 TEST(StitchRollDynamics, BeNewtonCarriesALegNodeThroughTheSegmentsLine) {
