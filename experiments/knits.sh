@@ -7,6 +7,7 @@
 # 72 × 72 stockinette (10 224 stitch contacts) and the 129 × 129 woven cloth,
 # a few be-newton steps each in this one script, step time and peak memory per
 # DoF side by side. WL_OUT changes the folder (default results/knits);
+# WL_DURATION the simulated time of the patches (default 0.15 s);
 # WL_SKIP_SCALE=1 skips the scale probe, WL_ONLY_SCALE=1 runs it alone.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,7 +21,7 @@ if [ "${WL_ONLY_SCALE:-0}" = 1 ]; then kinds=""; fi
 for kind in $kinds; do
   scene=experiments/scenes/knit_$kind.toml
   echo "== $kind" >&2
-  build/weavelab run "$scene" --duration 0.15 --output-interval 0.01 --quiet --out "$out/$kind"
+  build/weavelab run "$scene" --duration "${WL_DURATION:-0.15}" --output-interval 0.01 --quiet --out "$out/$kind"
   args+=("$scene:$out/$kind")
 done
 if [ -n "$kinds" ]; then "$python" experiments/plot_knits.py "$out" "${args[@]}" | tee "$out/knits.txt"; fi

@@ -9,6 +9,12 @@ order, models/knit/knit_graph.cpp). Per frame:
   inside) above the cloth's plane (z up, the face); an edge curling towards the
   face is positive, and the mean of two opposite edges is the curl (a rigid
   tilt of the patch cancels in it, their half difference is that tilt);
+- turn at an edge: the angle [deg] of the edge row against the row next to it
+  (the edge's own tangent) about the edge, positive towards the face, unwrapped
+  over the frames, so that it counts an edge that rolls over: the curl stops at
+  ±90° and folds back once the edge has turned past the vertical (frames must
+  be close enough for each edge to turn by less than 180° between them); the
+  mean of two opposite edges again;
 - course width: the mean over the inner contact rows of the row's extent in x.
 Writes OUT/knits.csv and OUT/knit_curl.png."""
 import os
@@ -37,10 +43,26 @@ def measure(points, courses, wales):
     top = angle(mean(r == courses - 1) - mean(r == courses - 4), 1)
     left = angle(mean(c == 0) - mean(c == 3), 0)
     right = angle(mean(c == wales - 1) - mean(c == wales - 4), 0)
+    # The edge's tangent against its outward direction in the cloth's plane (wrapped; unwrapped in main).
+    tangent = lambda d, along, out: float(np.arctan2(d[2], out * d[along]))  # noqa: E731
+    turns = dict(turn_bottom=tangent(mean(r == -1) - mean(r == 0), 1, -1),
+                 turn_top=tangent(mean(r == courses - 1) - mean(r == courses - 2), 1, 1),
+                 turn_left=tangent(mean(c == 0) - mean(c == 1), 0, -1),
+                 turn_right=tangent(mean(c == wales - 1) - mean(c == wales - 2), 0, 1))
     inner = range(1, courses - 2)
     width = np.mean([np.ptp(points[r == k][:, 0]) for k in inner])
     return dict(bottom=bottom, top=top, left=left, right=right, course_curl=(bottom + top) / 2,
-                wale_curl=(left + right) / 2, width_mm=1e3 * width)
+                wale_curl=(left + right) / 2, width_mm=1e3 * width, **turns)
+
+
+def unwrap_turns(series):
+    """The edge turns of one run's frames, unwrapped over time, in degrees, and their means."""
+    for key in ("turn_bottom", "turn_top", "turn_left", "turn_right"):
+        for (_, m), x in zip(series, np.degrees(np.unwrap([m[key] for _, m in series]))):
+            m[key] = float(x)
+    for _, m in series:
+        m["course_turn"] = (m["turn_bottom"] + m["turn_top"]) / 2
+        m["wale_turn"] = (m["turn_left"] + m["turn_right"]) / 2
 
 
 def main():
@@ -54,20 +76,22 @@ def main():
             scene = tomllib.load(f)
         p = scene["cloth"]["pattern"]
         name = p["kind"]
-        for t, mesh in io.read_frames(run):
-            m = measure(mesh.points, p["courses"], p["wales"])
-            rows.append(dict(pattern=name, t_s=t, **m))
-            series.setdefault(name, []).append((t, m))
-    keys = ["pattern", "t_s", "bottom", "top", "left", "right", "course_curl", "wale_curl", "width_mm"]
+        s = [(t, measure(mesh.points, p["courses"], p["wales"])) for t, mesh in io.read_frames(run)]
+        unwrap_turns(s)
+        rows += [dict(pattern=name, t_s=t, **m) for t, m in s]
+        series[name] = s
+    keys = ["pattern", "t_s", "bottom", "top", "left", "right", "course_curl", "wale_curl", "width_mm",
+            "turn_bottom", "turn_top", "turn_left", "turn_right", "course_turn", "wale_turn"]
     text = ",".join(keys) + "\n" + "".join(
         ",".join(str(r[k]) if k == "pattern" else f"{r[k]:.6g}" for k in keys) + "\n" for r in rows)
     io.write_text_atomically(os.path.join(out, "knits.csv"), text)
     print(f"{'pattern':12s} {'t [s]':>6s} {'course-edge curl':>17s} {'wale-edge curl':>15s} "
-          f"{'tilt':>6s} {'course width [mm]':>18s}")
+          f"{'tilt':>6s} {'course width [mm]':>18s} {'turn: bottom':>13s} {'top':>7s} {'left':>7s} {'right':>7s}")
     for name, s in series.items():
         for t, m in (s[0], s[-1]):
             print(f"{name:12s} {t:6.3f} {m['course_curl']:+16.2f}° {m['wale_curl']:+14.2f}° "
-                  f"{(m['left'] - m['right']) / 2:+5.1f}° {m['width_mm']:18.3f}")
+                  f"{(m['left'] - m['right']) / 2:+5.1f}° {m['width_mm']:18.3f} {m['turn_bottom']:+12.1f}° "
+                  f"{m['turn_top']:+6.1f}° {m['turn_left']:+6.1f}° {m['turn_right']:+6.1f}°")
     if "rib2x2" in series and "stockinette" in series:
         ratio = series["rib2x2"][-1][1]["width_mm"] / series["stockinette"][-1][1]["width_mm"]
         print(f"course width rib2x2 / stockinette at the last frame: {ratio:.4f}")
@@ -77,10 +101,12 @@ def main():
     fig, ax = plt.subplots(1, 2, figsize=(9, 3.5))
     for name, s in series.items():
         t = [x[0] for x in s]
-        ax[0].plot(t, [x[1]["course_curl"] for x in s], label=name)
-        ax[1].plot(t, [x[1]["wale_curl"] for x in s], label=name)
-    ax[0].set_title("curl at the course edges (top, bottom)")
-    ax[1].set_title("curl at the wale edges (left, right)")
+        line = ax[0].plot(t, [x[1]["course_curl"] for x in s], label=name)[0]
+        ax[0].plot(t, [x[1]["course_turn"] for x in s], "--", color=line.get_color())
+        line = ax[1].plot(t, [x[1]["wale_curl"] for x in s], label=name)[0]
+        ax[1].plot(t, [x[1]["wale_turn"] for x in s], "--", color=line.get_color())
+    ax[0].set_title("course edges (top, bottom): curl, turn dashed", fontsize=9)
+    ax[1].set_title("wale edges (left, right): curl, turn dashed", fontsize=9)
     for a in ax:
         a.set_xlabel("t [s]")
         a.set_ylabel("curl [deg]")

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "integrators/step_clock.h"
@@ -88,11 +89,17 @@ double Integrator::admissible_reach(double t0, const Vec& q0, double t1, const V
 }
 
 StepResult Integrator::fixed_step(double h, const std::function<StepResult(double, int&)>& move) {
-  // A model with admissible states (docs/design.md §3.6): a step whose move
-  // leaves them, or whose Newton iteration fails, is retaken as two halves.
+  return fixed_step_part(h, 0, move);
+}
+
+StepResult Integrator::fixed_step_part(double h, int halvings, const std::function<StepResult(double, int&)>& move) {
+  // A step whose Newton iteration fails is retaken as two halves, for every
+  // model, at most kMaxNewtonHalvings times in a row; a model with admissible
+  // states (docs/design.md §3.6) also retakes a step whose move leaves them,
+  // down to opt_.min_step.
   const bool constrained = model_->constrains_steps();
-  const Vec q0 = constrained ? q_ : Vec(), v0 = constrained ? v_ : Vec();
-  const Eigen::MatrixXd sq = constrained ? dq_dp_ : Eigen::MatrixXd(), sv = constrained ? dv_dp_ : Eigen::MatrixXd();
+  const Vec q0 = q_, v0 = v_;
+  const Eigen::MatrixXd sq = dq_dp_, sv = dv_dp_;
   int iters = 0;
   double wall = 0.0;
   StepResult r;
@@ -101,9 +108,9 @@ StepResult Integrator::fixed_step(double h, const std::function<StepResult(doubl
     r = move(h, iters);
     wall = clock.elapsed_wall();
   }
-  const bool retake = constrained && ((r.outcome == Outcome::ok && admissible_reach(t_, q0, t_ + h, q_) < 1.0) ||
-                                      r.cause == FailureCause::newton);
-  if (!retake) return r.outcome != Outcome::ok ? r : finish_step(t_ + h, h, iters, wall);
+  const bool inadmissible = constrained && r.outcome == Outcome::ok && admissible_reach(t_, q0, t_ + h, q_) < 1.0;
+  const bool newton_failed = r.outcome != Outcome::ok && r.cause == FailureCause::newton;
+  if (!inadmissible && !newton_failed) return r.outcome != Outcome::ok ? r : finish_step(t_ + h, h, iters, wall);
   q_ = q0;
   v_ = v0;
   dq_dp_ = sq;
@@ -111,10 +118,18 @@ StepResult Integrator::fixed_step(double h, const std::function<StepResult(doubl
   ++stats_.rejected_steps;
   if (0.5 * h < opt_.min_step)
     return {Outcome::step_too_small, "step " + std::to_string(0.5 * h) + " s below the minimum " +
-                                         std::to_string(opt_.min_step) + " s while keeping nodes outside obstacles" +
+                                         std::to_string(opt_.min_step) + " s" +
+                                         (constrained ? " while keeping nodes outside obstacles" : "") +
                                          (r.message.empty() ? "" : " (last failure: " + r.message + ")")};
-  if (StepResult first = fixed_step(0.5 * h, move); first.outcome != Outcome::ok) return first;
-  return fixed_step(0.5 * h, move);
+  if (newton_failed && !constrained && halvings == kMaxNewtonHalvings) {
+    char where[160];
+    std::snprintf(where, sizeof where, " (the step retaken in halves %d times, down to %.4g s, at t = %.9g s)",
+                  kMaxNewtonHalvings, h, t_);
+    r.message += where;
+    return r;
+  }
+  if (StepResult first = fixed_step_part(0.5 * h, halvings + 1, move); first.outcome != Outcome::ok) return first;
+  return fixed_step_part(0.5 * h, halvings + 1, move);
 }
 
 StepResult Integrator::finish_step(double t_new, double h, long nonlinear_iters, double wall_s) {

@@ -143,14 +143,20 @@ class Integrator {
   // honouring opt_.max_steps; `step(h)` is one fixed_step of size h.
   StepResult advance_fixed_steps(double t_out, const std::function<StepResult(double)>& step);
   // One step of size h of an in-house method: `move(h, nonlinear_iters)`
-  // advances q_ and v_ (timed into stats_), then finish_step does the rest.
+  // advances q_ and v_ (timed into stats_), then finish_step does the rest. A
+  // step whose Newton iteration fails is retaken as two halves (docs/design.md
+  // §6.1), at most kMaxNewtonHalvings times in a row; a model with admissible
+  // states also retakes a step that leaves them (§3.6), down to opt_.min_step.
   StepResult fixed_step(double h, const std::function<StepResult(double h, int& nonlinear_iters)>& move);
+  static constexpr int kMaxNewtonHalvings = 10;
   // The bookkeeping after every step of every method: checks the state
   // (q_, v_) reached by a step of size h at t_new (check_state); when it is
   // sound, sets t_ = t_new, counts the step, lets the model update its history
   // (Model::accept_step) and reports the step (on_step). A failed check leaves
   // t_ and the count.
   StepResult finish_step(double t_new, double h, long nonlinear_iters, double wall_s);
+  // fixed_step at `halvings` halvings below the step first asked for.
+  StepResult fixed_step_part(double h, int halvings, const std::function<StepResult(double, int&)>& move);
   // Shared part of initialize(): binds the model and options, sets the state
   // (pinned DoFs at rest) and clears the statistics.
   void bind(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt);

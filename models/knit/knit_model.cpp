@@ -283,7 +283,8 @@ void KnitModel::add_stitch_terms() {
       Eigen::Matrix<double, 12, 1> rest;  // at the initial state: the relaxed rest shape
       rest << q0_.segment<3>(x0), q0_.segment<3>(x1), q0_.segment<3>(x3) + shift3, q0_.segment<3>(x5) + shift5;
       roll.term->add({x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2, x5, x5 + 1, x5 + 2},
-                     k.roll_stiffness_N, rest_length, StitchRollTerm::angle(rest.data()));
+                     k.roll_stiffness_N, rest_length, StitchRollTerm::angle(rest.data()),
+                     StitchRollTerm::opening(rest.data()));
       roll.term->tag_last(kRollStiffnessKey, k.roll_stiffness_N);
       roll.add_shift(Vec3::Zero());
       roll.add_shift(Vec3::Zero());

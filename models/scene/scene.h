@@ -33,7 +33,7 @@ struct KnitPattern {
   int courses = 8;                               // loop rows (yarns), ≥ 2; garter: even
   int wales = 8;                                 // loop columns, ≥ 2; rib2x2: a multiple of 4
   double course_spacing_m = 0.0;                 // C, loop height; 0: 0.8·cloth.spacing_m (the loop width W)
-  double roll_stiffness_N = 1e-5;                // k_t, V = ½ k_t L (ψ − ψ̄)² (docs/models.md §11.4)
+  double roll_stiffness_N = 1e-5;                // k_t, V ≈ ½ k_t L (ψ − ψ̄)² (docs/models.md §11.4.1)
   double stitch_length_stiffness_N = 0.1;        // k_l, V = ½ k_l L (Δu/L − 1)² (docs/models.md §11.4)
   double compression_stiffness_N_per_m = 100.0;  // κ, V = ½ κ (2R − d)² (docs/models.md §11.6)
 };

@@ -107,9 +107,9 @@ TEST(SelfContactPair, ParallelEdgesHaveTheirSeparationAsDistance) {
 // Two free triangles, the second above the first and turned by 180° about the
 // vertical through their common centroid (each vertex over the other's edge):
 // the first moves up at w, the second down at w.
-class TwoTriangles : public TermModel {
+class TwoTriangles : public test::HandBuiltModel<TwoTriangles> {
  public:
-  explicit TwoTriangles(double w) {
+  explicit TwoTriangles(double w) : HandBuiltModel("two-triangles") {
     num_dofs_ = 18;
     q0_.resize(18);
     v0_ = Vec::Zero(18);
@@ -126,15 +126,6 @@ class TwoTriangles : public TermModel {
                                                        0.5 * kDhat, kKappa));
     finalize();
   }
-  std::unique_ptr<Model> clone() const override { return std::make_unique<TwoTriangles>(*this); }
-  std::string name() const override { return "two-triangles"; }
-  bool mass_depends_on_q() const override { return false; }
-  Frame frame(double t, const Vec&, const Vec&) const override {
-    Frame f;
-    f.time = t;
-    return f;
-  }
-  std::map<std::string, std::string> describe() const override { return {}; }
 };
 
 // Smallest distance between the two triangles: the 6 point–triangle and 9 edge–edge pairs.

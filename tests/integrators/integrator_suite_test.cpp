@@ -244,9 +244,35 @@ TEST(BackwardEulerNewton, NonConvergenceIsAStructuredCause) {
   auto r = run("be-newton", osc, 0.1, opt);
   EXPECT_EQ(r.result.outcome, Outcome::diverged) << r.result.message;
   EXPECT_EQ(r.result.cause, FailureCause::newton) << r.result.message;
+  // Retaken in halves first (docs/design.md §6.1), the failure names how far.
+  EXPECT_NE(r.result.message.find("retaken in halves 10 times"), std::string::npos) << r.result.message;
+  EXPECT_EQ(r.stats.rejected_steps, 11);  // the step and its first halves, down to h/1024
   opt.newton_max_iters = 20;
   opt.newton_tol = 1e-8;
   EXPECT_EQ(run("be-newton", osc, 0.1, opt).result.outcome, Outcome::ok);
+}
+
+// A model without admissible states too: a step whose Newton iteration fails
+// is retaken as two halves (docs/design.md §6.1), and the halves land where
+// the run at the halved step lands.
+TEST(BackwardEulerNewton, AFailedStepIsRetakenInHalves) {
+  // Two Newton iterations do not converge a step of 0.1 s of this nonlinear
+  // oscillator but do one of 0.05 s: every step is retaken as two halves.
+  IntegratorOptions opt;
+  opt.dt = 0.1;
+  opt.newton_max_iters = 2;
+  test::VariableMassOscillator osc(1.0, 2.0, 1.0, 0.8, 0.0);
+  const RunResult retaken = run("be-newton", osc, 0.4, opt);
+  ASSERT_EQ(retaken.result.outcome, Outcome::ok) << retaken.result.message;
+  EXPECT_EQ(retaken.stats.rejected_steps, 4);
+  EXPECT_EQ(retaken.stats.steps, 8);
+  opt.dt = 0.05;
+  const RunResult halved = run("be-newton", osc, 0.4, opt);
+  ASSERT_EQ(halved.result.outcome, Outcome::ok) << halved.result.message;
+  EXPECT_EQ(halved.stats.rejected_steps, 0);
+  EXPECT_NEAR(retaken.q[0], halved.q[0], 1e-12);
+  EXPECT_NEAR(retaken.v[0], halved.v[0], 1e-12);
+  EXPECT_GT(std::abs(retaken.q[0] - osc.initial_q()[0]), 0.01) << "the oscillator should have moved";
 }
 
 TEST_P(IntegratorSuite, PinnedDofStaysFixedAndStatsAreCounted) {

@@ -148,7 +148,8 @@ std::vector<double> roll_local(const std::vector<double>& x, const StackPair& p)
 StitchRollTerm stacked_roll(const std::vector<double>& rest, double kt, double length) {
   StitchRollTerm t;
   for (const StackPair& p : stack_pairs(3))
-    t.add({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}, kt, length, StitchRollTerm::angle(roll_local(rest, p).data()));
+    t.add({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}, kt, length, StitchRollTerm::angle(roll_local(rest, p).data()),
+          StitchRollTerm::opening(roll_local(rest, p).data()));
   return t;
 }
 
@@ -186,7 +187,8 @@ TEST(StackedStitchRoll, PairForcesAndJacobiansMatchFiniteDifferences) {
 
 TEST(StackedStitchRoll, TurningOneYarnTurnsItAgainstBothOthers) {
   // Each yarn turned alone by δ about the segment turns two pairs by δ:
-  // V = 2 · ½ k_t L δ², whichever yarn (a dropped pair leaves half of that for two of them).
+  // V = 2 k_t L (1 − cos δ) (≈ 2 · ½ k_t L δ², §11.4.1), whichever yarn (a dropped pair leaves half of that
+  // for two of them).
   const std::vector<double> rest = three_yarn_stitch();
   const double kt = 0.02, L = 0.58e-3, delta = 0.3;
   const StitchRollTerm t = stacked_roll(rest, kt, L);
@@ -195,7 +197,7 @@ TEST(StackedStitchRoll, TurningOneYarnTurnsItAgainstBothOthers) {
     const std::vector<double> x = turned(rest, k, delta);
     double total = 0.0;
     for (int e = 0; e < 3; ++e) total += t.energy(e, roll_local(x, pairs[e]).data());
-    EXPECT_NEAR(total, kt * L * delta * delta, 1e-12 * kt * L) << "yarn " << k;
+    EXPECT_NEAR(total, 2.0 * kt * L * (1.0 - std::cos(delta)), 1e-12 * kt * L) << "yarn " << k;
   }
   // The three pair angles are not independent: with θ_k the azimuth of yarn k's
   // plane about the segment, ψ_ij = θ_i − θ_j + π, so ψ02 = ψ01 + ψ12 − π (mod 2π).
@@ -269,7 +271,7 @@ class StackedStitchPatch : public TermModel {
       Eigen::Matrix<double, 12, 1> rest;
       rest << pos(0), pos(1), pos(5 + pr.i), pos(5 + pr.j);
       roll->add({x0[0], x0[1], x0[2], x1[0], x1[1], x1[2], x3[0], x3[1], x3[2], x5[0], x5[1], x5[2]}, k.kt,
-                (pos(1) - pos(0)).norm(), StitchRollTerm::angle(rest.data()));
+                (pos(1) - pos(0)).norm(), StitchRollTerm::angle(rest.data()), StitchRollTerm::opening(rest.data()));
       roll->tag_last("roll", k.kt);
       compression->add(st, k.kappa, kD, 1, 1, pr.share);
       compression->tag_last("compression", k.kappa);

@@ -1,11 +1,13 @@
 // The knit terms (docs/models.md §11.4–§11.5) and the periodic image wrapper
 // (§11.3): analytic forces and Jacobians against finite differences, the roll
-// angle's sign and rest, the wrapper's shift.
+// angle's sign and rest, the roll through a degenerate triangle (§11.4.1; one
+// be-newton run across it), the wrapper's shift.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "integrators/integrator.h"
 #include "models/knit/image_term.h"
 #include "models/knit/terms/stitch_compression.h"
 #include "models/knit/terms/stitch_length.h"
@@ -13,6 +15,7 @@
 #include "models/knit/terms/yarn_compression.h"
 #include "models/yarn/terms/stretch.h"
 #include "tests/support/fd_check.h"
+#include "tests/support/node_mass.h"
 
 namespace wl {
 namespace {
@@ -31,7 +34,7 @@ std::vector<double> stitch_state(double lift) {
 
 TEST(StitchRollTerm, ForcesAndJacobiansMatchFiniteDifferences) {
   StitchRollTerm t;
-  t.add(identity12(), 0.02, 1e-3, 0.3);
+  t.add(identity12(), 0.02, 1e-3, 0.3, 0.5);
   const std::vector<double> zero(12, 0.0);
   std::vector<test::LocalState> states = {{stitch_state(0.0), zero}, {stitch_state(-0.7e-3), zero}};
   // ψ on both sides of 0 and far from the rest angle: the signed angle's branches.
@@ -44,6 +47,11 @@ TEST(StitchRollTerm, ForcesAndJacobiansMatchFiniteDifferences) {
     for (int k = 0; k < 3; ++k) flipped[9 + k] = turned[k];
   }
   states.push_back({flipped, zero});
+  // A nearly degenerate triangle a: x5 0.5 % of its distance off the segment's line.
+  std::vector<double> thin = stitch_state(0.0);
+  for (int k = 0; k < 3; ++k) thin[9 + k] = thin[3 + k] + 1.5 * (thin[3 + k] - thin[k]) + (k == 0 ? 5e-6 : 0.0);
+  states.push_back({thin, zero});
+  EXPECT_LT(StitchRollTerm::opening(thin.data()), 1e-4) << "the thin state should nearly degenerate";
   test::FdOptions opt;
   opt.floor = 1e-14;
   const auto r = test::check_element(t, 0, states, opt);
@@ -56,7 +64,7 @@ TEST(StitchRollTerm, ForcesAndJacobiansMatchFiniteDifferences) {
 TEST(StitchRollTerm, ParameterDerivativeMatchesFiniteDifferences) {
   auto make = [](double kt) {
     auto term = std::make_unique<StitchRollTerm>();
-    term->add(identity12(), kt, 1e-3, 0.3);
+    term->add(identity12(), kt, 1e-3, 0.3, 0.5);
     term->tag_last("knit.roll_stiffness_N", kt);
     return std::unique_ptr<Term>(std::move(term));
   };
@@ -71,13 +79,13 @@ TEST(StitchRollTerm, ParameterDerivativeMatchesFiniteDifferences) {
 TEST(StitchRollTerm, NoForceAtTheRestAngleAndRotationInvariant) {
   const std::vector<double> q = stitch_state(0.0);
   StitchRollTerm t;
-  t.add(identity12(), 0.02, 1e-3, StitchRollTerm::angle(q.data()));
+  t.add(identity12(), 0.02, 1e-3, StitchRollTerm::angle(q.data()), StitchRollTerm::opening(q.data()));
   std::vector<double> f(12, 1.0), v(12, 0.0);
   t.evaluate(0, q.data(), v.data(), ElementOutput{f.data()});
   for (double x : f) EXPECT_NEAR(x, 0.0, 1e-15);
   // The energy is periodic in the roll: a rest angle one turn away is the same rest.
   StitchRollTerm turn;
-  turn.add(identity12(), 0.02, 1e-3, StitchRollTerm::angle(q.data()) + 2.0 * M_PI);
+  turn.add(identity12(), 0.02, 1e-3, StitchRollTerm::angle(q.data()) + 2.0 * M_PI, StitchRollTerm::opening(q.data()));
   EXPECT_NEAR(turn.energy(0, q.data()), 0.0, 1e-24);
   // A rigid rotation about z keeps ψ.
   std::vector<double> r = q;
@@ -94,6 +102,120 @@ TEST(StitchRollTerm, NoForceAtTheRestAngleAndRotationInvariant) {
   std::vector<double> p = q;
   for (int k = 0; k < 3; ++k) p[9 + k] = turned[k];
   EXPECT_NEAR(std::abs(StitchRollTerm::angle(p.data()) - StitchRollTerm::angle(q.data())), 0.2, 1e-12);
+}
+
+// The leg yarn's node x5 turned by δ about the segment (the triangles keep their opening).
+std::vector<double> rolled(std::vector<double> q, double delta) {
+  const Eigen::Vector3d x0(q[0], q[1], q[2]), x1(q[3], q[4], q[5]), x5(q[9], q[10], q[11]);
+  const Eigen::Vector3d turned = x0 + Eigen::AngleAxisd(delta, (x1 - x0).normalized()) * (x5 - x0);
+  for (int k = 0; k < 3; ++k) q[9 + k] = turned[k];
+  return q;
+}
+
+std::vector<double> roll_force(const StitchRollTerm& t, const std::vector<double>& q) {
+  std::vector<double> f(12, 0.0), v(12, 0.0);
+  t.evaluate(0, q.data(), v.data(), ElementOutput{f.data()});
+  return f;
+}
+
+double norm(const std::vector<double>& f) {
+  double s = 0.0;
+  for (double x : f) s += x * x;
+  return std::sqrt(s);
+}
+
+// Small rolls: the source's ½ k_t L (ψ − ψ̄)² (docs/models.md §11.4.1); a half
+// turn: the energy's maximum 2 k_t L, its force continuous there (the quadratic
+// in the wrapped angle jumped from −k_t L π ∇ψ to +k_t L π ∇ψ).
+TEST(StitchRollTerm, SmallRollsAreTheSourcesQuadraticAndAHalfTurnIsSmooth) {
+  const std::vector<double> q = stitch_state(0.0);
+  const double kt = 0.02, L = 1e-3;
+  StitchRollTerm t;
+  t.add(identity12(), kt, L, StitchRollTerm::angle(q.data()), StitchRollTerm::opening(q.data()));
+  for (double delta : {1e-3, -2e-3}) {
+    const double expected = 0.5 * kt * L * delta * delta;
+    EXPECT_NEAR(t.energy(0, rolled(q, delta).data()), expected, 1e-6 * expected) << delta;
+  }
+  EXPECT_NEAR(t.energy(0, rolled(q, M_PI).data()), 2.0 * kt * L, 1e-12 * kt * L);
+  const std::vector<double> below = roll_force(t, rolled(q, M_PI - 1e-6)),
+                            above = roll_force(t, rolled(q, M_PI + 1e-6));
+  const double scale = norm(roll_force(t, rolled(q, 0.5 * M_PI)));
+  ASSERT_GT(scale, 0.0);
+  for (int a = 0; a < 12; ++a) EXPECT_NEAR(below[a], above[a], 1e-5 * scale) << a;
+}
+
+// x5 carried through the segment's line: ψ is undefined there and its
+// gradient grows as 1/‖v_a‖, but the weighted energy and its force go to 0 on
+// both sides (docs/models.md §11.4.1; the unweighted roll's force there grew
+// without bound and flipped with the triangle's normal).
+TEST(StitchRollTerm, ForceVanishesThroughADegenerateTriangle) {
+  const std::vector<double> q = stitch_state(0.0);
+  StitchRollTerm t;
+  t.add(identity12(), 0.02, 1e-3, StitchRollTerm::angle(q.data()) + 1.0, StitchRollTerm::opening(q.data()));
+  const double scale = norm(roll_force(t, q));
+  ASSERT_GT(scale, 0.0);
+  auto through = [&](double offset) {  // x5 on the segment's line beyond x1, moved off it along x by `offset`
+    std::vector<double> p = q;
+    for (int k = 0; k < 3; ++k) p[9 + k] = p[3 + k] + 1.5 * (p[3 + k] - p[k]) + (k == 0 ? offset : 0.0);
+    return p;
+  };
+  for (double offset : {1e-7, -1e-7, 1e-9, -1e-9}) {
+    const std::vector<double> p = through(offset);
+    EXPECT_LT(norm(roll_force(t, p)), 2e-3 * scale) << offset;
+    EXPECT_LT(t.energy(0, p.data()), 1e-6 * t.energy(0, q.data())) << offset;
+  }
+  // On the line (to rounding): no NaN, and still no force.
+  const std::vector<double> on = through(0.0);
+  const std::vector<double> f = roll_force(t, on);
+  for (double x : f) EXPECT_TRUE(std::isfinite(x));
+  EXPECT_LT(norm(f), 1e-6 * scale);
+}
+
+// One stitch whose leg node x5 (mass m) flies across the segment's line at
+// speed w, x0, x1 and x3 held, the roll 1 rad from its rest: the free 12 × 12
+// stockinette's failure at 292 ms in miniature (docs/models.md §11.4.1). With
+// the source's roll energy this run gains energy from its second step on (4 %
+// by the crossing): its force grows as 1/distance to the line and flips there.
+class RollingLeg : public test::HandBuiltModel<RollingLeg> {
+ public:
+  RollingLeg(double m, double w) : HandBuiltModel("rolling-leg") {
+    num_dofs_ = 12;
+    std::vector<double> q = stitch_state(0.0);
+    const Vec3 x0(q[0], q[1], q[2]), x1(q[3], q[4], q[5]);
+    const Vec3 on_line = x1 + 1.5 * (x1 - x0), off = Vec3(1, 0, 0);
+    const std::vector<double> rest = q;
+    for (int k = 0; k < 3; ++k) q[9 + k] = on_line[k] + 0.2e-3 * off[k];
+    q0_ = Eigen::Map<const Vec>(q.data(), 12);
+    v0_ = Vec::Zero(12);
+    v0_.segment<3>(9) = -w * off;
+    terms_.push_back(std::make_unique<test::NodeMassTerm>(4, m));
+    auto roll = std::make_unique<StitchRollTerm>();
+    roll->add(identity12(), 1e-5, 1e-3, StitchRollTerm::angle(rest.data()) + 1.0, StitchRollTerm::opening(rest.data()));
+    terms_.push_back(std::move(roll));
+    for (int i = 0; i < 9; ++i) fixed_.push_back(i);
+    finalize();
+  }
+};
+
+TEST(StitchRollDynamics, BeNewtonCarriesALegNodeThroughTheSegmentsLine) {
+  const double m = 1e-6, w = 0.37, h = 1e-4;
+  RollingLeg model(m, w);
+  auto integ = make_integrator("be-newton");
+  IntegratorOptions opt;
+  opt.dt = h;
+  integ->initialize(model, 0.0, model.initial_q(), model.initial_v(), opt);
+  auto energy = [&](const Vec& q, const Vec& v) { return model.potential_energy(q) + 0.5 * m * v.squaredNorm(); };
+  double e_prev = energy(model.initial_q(), model.initial_v());
+  const double x_line = model.initial_q()[9] - 0.2e-3;
+  for (int k = 1; k <= 10; ++k) {
+    const StepResult r = integ->advance_to(k * h);
+    ASSERT_EQ(r.outcome, Outcome::ok) << "step " << k << ": " << r.message;
+    const double e = energy(integ->q(), integ->v());
+    EXPECT_LE(e, e_prev * (1.0 + 1e-9)) << "step " << k << ": backward Euler gained energy";
+    e_prev = e;
+  }
+  EXPECT_LT(integ->q()[9], x_line - 0.1e-3) << "the leg node should have crossed the segment's line";
+  EXPECT_EQ(integ->stats().rejected_steps, 0) << "no step should need halving";
 }
 
 TEST(StitchLengthTerm, ForcesAndJacobiansMatchFiniteDifferences) {

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "models/core/term.h"
+#include "models/core/term_model.h"
 
 namespace wl::test {
 
@@ -23,6 +24,29 @@ class NodeMassTerm : public StencilTerm<3> {
 
  private:
   double m_;
+};
+
+// A model of hand-built terms with a constant mass (NodeMassTerm), no frame
+// data and no description: `Derived` fills num_dofs_, q0_, v0_, terms_ (and
+// fixed_) and calls finalize(); `name` names it.
+template <class Derived>
+class HandBuiltModel : public TermModel {
+ public:
+  explicit HandBuiltModel(std::string name) : name_(std::move(name)) {}
+  std::unique_ptr<Model> clone() const override {
+    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
+  }
+  std::string name() const override { return name_; }
+  bool mass_depends_on_q() const override { return false; }
+  Frame frame(double t, const Vec&, const Vec&) const override {
+    Frame f;
+    f.time = t;
+    return f;
+  }
+  std::map<std::string, std::string> describe() const override { return {}; }
+
+ private:
+  std::string name_;
 };
 
 }  // namespace wl::test
