@@ -38,17 +38,28 @@ std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colour
   return colour;
 }
 
+// global[slot] += local over an element's n×n block (slot −1: a constant's entry).
+void scatter_block(int nn, const int* slots, const double* local, double* global) {
+  for (int ab = 0; ab < nn; ++ab)
+    if (slots[ab] >= 0) global[slots[ab]] += local[ab];
+}
+
 // A[slot] += c_m m + c_v d + c_q k over an element's n×n block (d, m: null
-// where the term provides none).
-void add_step_block(const StepWeights& c, int n, const int* slots, const double* k, const double* d, const double* m,
+// where the term provides none). The block is combined in k first (a loop
+// the compiler vectorizes), then scattered: k is overwritten.
+void add_step_block(const StepWeights& c, int n, const int* slots, double* k, const double* d, const double* m,
                     double* a) {
-  for (int ab = 0; ab < n * n; ++ab) {
-    if (slots[ab] < 0) continue;
-    double x = c.dfdq * k[ab];
-    if (d) x += c.dfdv * d[ab];
-    if (m) x += c.mass * m[ab];
-    a[slots[ab]] += x;
-  }
+  const int nn = n * n;
+  const double cq = c.dfdq, cv = c.dfdv, cm = c.mass;
+  if (d && m)
+    for (int ab = 0; ab < nn; ++ab) k[ab] = cq * k[ab] + cv * d[ab] + cm * m[ab];
+  else if (d)
+    for (int ab = 0; ab < nn; ++ab) k[ab] = cq * k[ab] + cv * d[ab];
+  else if (m)
+    for (int ab = 0; ab < nn; ++ab) k[ab] = cq * k[ab] + cm * m[ab];
+  else
+    for (int ab = 0; ab < nn; ++ab) k[ab] *= cq;
+  scatter_block(nn, slots, k, a);
 }
 
 // out[s[a]] += Σ_b block(a, b) w_b over the DoF rows of a column-major n×n block.
@@ -204,21 +215,16 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
         if (is_dof(s[a])) f[s[a]] += fl[a];
       const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;
       if (av) {  // A += c_m M_e + c_v D_e + c_q K_e, docs/models.md §7.2
-        add_step_block(*step, n, slots, kl, want_d ? dl : nullptr, want_m ? ml : nullptr, av);
         if (w) {
           for (int a = 0; a < n; ++a) wl[a] = is_dof(s[a]) ? (*w)[s[a]] : 0.0;
           add_block_product(n, s.data(), kl, wl, *req.dfdq_w);
         }
+        add_step_block(*step, n, slots, kl, want_d ? dl : nullptr, want_m ? ml : nullptr, av);
         continue;
       }
-      if (!kv && !dv && !mv) continue;
-      auto scatter = [&](double* global, const double* local) {
-        for (int ab = 0; ab < n * n; ++ab)
-          if (slots[ab] >= 0) global[slots[ab]] += local[ab];
-      };
-      if (kv) scatter(kv, kl);
-      if (dv) scatter(dv, dl);
-      if (mv) scatter(mv, ml);
+      if (kv) scatter_block(n * n, slots, kl, kv);
+      if (dv) scatter_block(n * n, slots, dl, dv);
+      if (mv) scatter_block(n * n, slots, ml, mv);
     }
   };
 
@@ -255,6 +261,26 @@ double Assembly::energy(const Vec& q, const Vec& constants) const {
       auto s = term.stencil(e);
       for (int a = 0; a < plan.n; ++a) ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
       total += term.energy(e, ql.data());
+    }
+  }
+  return total;
+}
+
+double Assembly::kinetic_energy(const Vec& q, const Vec& v, const Vec& constants) const {
+  double total = 0.0;
+  std::vector<double> ql, vl;
+  for (const TermPlan& plan : plans_) {
+    const Term& term = *plan.term;
+    if (!term.provides_mass()) continue;
+    ql.resize(plan.n);
+    vl.resize(plan.n);
+    for (int e = 0; e < term.num_elements(); ++e) {
+      auto s = term.stencil(e);
+      for (int a = 0; a < plan.n; ++a) {
+        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
+        vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
+      }
+      total += term.kinetic_energy(e, ql.data(), vl.data());
     }
   }
   return total;
