@@ -15,6 +15,7 @@ void BackwardEuler::initialize(Model& model, double t0, const Vec& q0, const Vec
   bind(model, t0, q0, v0, opt);
   allocate_evaluation(model, ev_);
   have_mass_ = false;
+  dv_step_ = 0.0;
   a_ = model.pattern();
   solver_ = std::make_unique<SparseSolver>(model.pattern(), model.fixed_dofs(), step_solver_options());
 }
@@ -47,7 +48,13 @@ StepResult BackwardEuler::step_linear(double h, int* iters) {
   ++stats_.linear_setups;
   if (!solver_->factorize(a_)) return {Outcome::diverged, solver_->failure()};
   rhs_ *= h;
-  if (!solver_->solve(rhs_, dv_)) return {Outcome::diverged, solver_->failure()};
+  // GMRES starts from the previous step's Δv ≈ h a, scaled to this step
+  // (a warm start, docs/design.md §6.3).
+  const bool warm = dv_step_ > 0.0;
+  if (warm && dv_step_ != h) dv_ *= h / dv_step_;
+  dv_step_ = 0.0;
+  if (!solver_->solve(rhs_, dv_, warm)) return {Outcome::diverged, solver_->failure()};
+  dv_step_ = h;
   ++stats_.linear_solves;
   if (dq_dp_.cols() > 0) propagate_linear_sensitivities(h, dv_);
   v_ += dv_;

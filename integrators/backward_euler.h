@@ -54,6 +54,7 @@ class BackwardEuler : public Integrator {
   SparseMatrix a_;
   std::unique_ptr<SparseSolver> solver_;
   Vec rhs_, dv_;            // be-linear's right-hand side and solution, kept between steps
+  double dv_step_ = 0.0;    // the step h whose solution dv_ holds (0: none to start from)
   bool have_mass_ = false;  // ev_.mass holds M (be-linear: kept when M does not depend on q)
 };
 

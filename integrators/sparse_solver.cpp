@@ -111,6 +111,46 @@ class Cholesky : public Eigen::CholmodDecomposition<Matrix64, Eigen::Lower> {
   cholmod_dense *x_ = nullptr, *y_ = nullptr, *e_ = nullptr;
 };
 
+// A by rows (compressed sparse rows, 32-bit indices) for GMRES's products:
+// y_i = Σ_k a_ik x_k is one gather and one running sum per entry, where the
+// column-major A x scatters into y (a load and a store per entry).
+class RowCopy {
+ public:
+  explicit RowCopy(const Matrix64& a) {
+    const auto rows = static_cast<size_t>(a.rows());
+    outer_.assign(rows + 1, 0);
+    for (std::int64_t k = 0; k < a.nonZeros(); ++k) ++outer_[a.innerIndexPtr()[k] + 1];
+    for (size_t i = 0; i < rows; ++i) outer_[i + 1] += outer_[i];
+    inner_.resize(a.nonZeros());
+    from_.resize(a.nonZeros());
+    values_.resize(a.nonZeros());
+    std::vector<int> next(outer_.begin(), outer_.end() - 1);
+    for (std::int64_t col = 0; col < a.cols(); ++col)  // columns in order: each row's come out sorted
+      for (std::int64_t k = a.outerIndexPtr()[col]; k < a.outerIndexPtr()[col + 1]; ++k) {
+        const int at = next[a.innerIndexPtr()[k]]++;
+        inner_[at] = static_cast<int>(col);
+        from_[at] = k;
+      }
+  }
+  // Copies A's values (same pattern as at construction).
+  void update(const Matrix64& a) {
+    const double* v = a.valuePtr();
+    for (size_t k = 0; k < from_.size(); ++k) values_[k] = v[from_[k]];
+  }
+  void multiply(Eigen::Ref<const Vec> x, Eigen::Ref<Vec> y) const {
+    for (size_t i = 0; i + 1 < outer_.size(); ++i) {
+      double s = 0.0;
+      for (int k = outer_[i]; k < outer_[i + 1]; ++k) s += values_[k] * x[inner_[k]];
+      y[static_cast<Eigen::Index>(i)] = s;
+    }
+  }
+
+ private:
+  std::vector<int> outer_, inner_;
+  std::vector<std::int64_t> from_;
+  std::vector<double> values_;
+};
+
 }  // namespace
 
 std::vector<std::string> linear_solver_names() { return {"auto", "umfpack", "cholmod", "gmres"}; }
@@ -138,6 +178,7 @@ struct SparseSolver::Impl {
   bool lu_analyzed = false, llt_analyzed = false;
   Matrix64 sym;  // S = (A + Aᵀ)/2 on reduced_'s pattern (gmres)
   std::unique_ptr<Gmres> gmres;
+  std::unique_ptr<RowCopy> rows;  // A by rows for GMRES's products, updated by factorize()
   enum class Precond { none, cholesky, lu } precond = Precond::none;
   bool precond_current = false;  // built from the matrix last given to factorize()
   int reuses = 0, last_iterations = 0;
@@ -322,6 +363,8 @@ bool SparseSolver::factorize(const SparseMatrix& a) {
       return factor_lu();
     case LinearSolverMethod::gmres: {
       if (!impl_->gmres) impl_->gmres = std::make_unique<Gmres>(num_free(), kGmresRestart);
+      if (!impl_->rows) impl_->rows = std::make_unique<RowCopy>(reduced_);
+      impl_->rows->update(reduced_);
       impl_->precond_current = false;
       ++impl_->reuses;
       const bool stale = impl_->precond == Impl::Precond::none || impl_->last_iterations > kRefactorIterations ||
@@ -333,14 +376,14 @@ bool SparseSolver::factorize(const SparseMatrix& a) {
   return false;
 }
 
-bool SparseSolver::gmres_solve(const Vec& rb, Vec& rx) const {
-  auto apply_a = [this](Eigen::Ref<const Vec> in, Eigen::Ref<Vec> out) { out.noalias() = reduced_ * in; };
+bool SparseSolver::gmres_solve(const Vec& rb, Vec& rx, bool from_x) const {
+  auto apply_a = [this](Eigen::Ref<const Vec> in, Eigen::Ref<Vec> out) { impl_->rows->multiply(in, out); };
   auto apply_p = [this](Eigen::Ref<const Vec> in, Eigen::Ref<Vec> out) {
     if (impl_->precond == Impl::Precond::cholesky) impl_->llt.solve_into(in, out);
     else out = impl_->lu.solve(in);
   };
   for (int attempt = 0; attempt < 3; ++attempt) {
-    rx.setZero();
+    if (attempt > 0 || !from_x) rx.setZero();
     const Gmres::Result r = impl_->gmres->solve(apply_a, apply_p, rb, rx, kGmresTolerance, kGmresMaxIterations);
     stats_.krylov_iterations += r.iterations;
     impl_->last_iterations = r.iterations;
@@ -360,10 +403,13 @@ bool SparseSolver::gmres_solve(const Vec& rb, Vec& rx) const {
   return false;
 }
 
-bool SparseSolver::solve(const Vec& b, Vec& x) const {
+bool SparseSolver::solve(const Vec& b, Vec& x, bool from_x) const {
   for (size_t i = 0; i < free_.size(); ++i) rb_[i] = b[free_[i]];
+  from_x = from_x && x.size() == b.size() && x.allFinite();
+  if (from_x)
+    for (size_t i = 0; i < free_.size(); ++i) rx_[i] = x[free_[i]];
   bool ok = true;
-  if (method_ == LinearSolverMethod::gmres) ok = gmres_solve(rb_, rx_);
+  if (method_ == LinearSolverMethod::gmres) ok = gmres_solve(rb_, rx_, from_x);
   else if (method_ == LinearSolverMethod::cholmod) impl_->llt.solve_into(rb_, rx_);
   else rx_ = impl_->lu.solve(rb_);
   ++stats_.solves;

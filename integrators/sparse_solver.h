@@ -80,8 +80,10 @@ class SparseSolver {
   // (x is zero on fixed DoFs), to the method's accuracy: direct, or
   // ‖b − A x‖ ≤ kGmresTolerance ‖b‖ on the free rows for gmres. Returns false
   // (failure() says why) when gmres does not get there. Const: what gmres
-  // refreshes (its preconditioner) is a cache of the same matrix.
-  bool solve(const Vec& b, Vec& x) const;
+  // refreshes (its preconditioner) is a cache of the same matrix. With
+  // `from_x`, gmres starts from the x given (a warm start: a nearby system's
+  // solution, such as the previous step's); the direct methods ignore it.
+  bool solve(const Vec& b, Vec& x, bool from_x = false) const;
   int num_free() const { return static_cast<int>(free_.size()); }
   // Starts over as a new solver on the same pattern would (method, statistics,
   // preconditioner, the value-dependent UMFPACK analysis), keeping the reduced
@@ -107,7 +109,7 @@ class SparseSolver {
   bool factor_preconditioner() const;
   bool factor_lu() const;
   bool factor_cholesky(bool symmetric_part) const;
-  bool gmres_solve(const Vec& rb, Vec& rx) const;
+  bool gmres_solve(const Vec& rb, Vec& rx, bool from_x) const;
 
   Options options_;
   LinearSolverMethod method_;

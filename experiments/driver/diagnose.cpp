@@ -38,7 +38,7 @@ class EnergyLedger {
       for (size_t k = 0; k < now.size(); ++k) work_[k] += 0.5 * (last_[k].power_W + now[k].power_W) * (t - t_);
     else work_.assign(now.size(), 0.0);
     Evaluation scratch;
-    kinetic_ = kinetic_energy(model, t, q, v, scratch);
+    kinetic_ = model.kinetic_energy(t, q, v, scratch);
     last_ = std::move(now);
     t_ = t;
   }

@@ -76,7 +76,7 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
   int reached = 0;
   Evaluation scratch;
   if (record.energies)
-    run.initial_energy_J = kinetic_energy(*model, 0.0, model->initial_q(), model->initial_v(), scratch) +
+    run.initial_energy_J = model->kinetic_energy(0.0, model->initial_q(), model->initial_v(), scratch) +
                            model->potential_energy(model->initial_q());
   size_t next_output = 0;
   for (double t_out : points) {
@@ -95,7 +95,7 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
     run.trajectory.positions.col(reached) = Eigen::Map<const Eigen::VectorXd>(f.points.data(), 3 * nodes);
     ++reached;
     if (record.energies) {
-      run.kinetic_J.push_back(kinetic_energy(*model, integrator->t(), integrator->q(), integrator->v(), scratch));
+      run.kinetic_J.push_back(model->kinetic_energy(integrator->t(), integrator->q(), integrator->v(), scratch));
       run.potential_J.push_back(model->potential_energy(integrator->q()));
     }
     if (record.on_frame) record.on_frame(f);

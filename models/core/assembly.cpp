@@ -38,25 +38,46 @@ std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colour
   return colour;
 }
 
-// A[slot] += c_m m + c_v d + c_q k over an element's n×n block (d, m: null
-// where the term provides none).
-void add_step_block(const StepWeights& c, int n, const int* slots, const double* k, const double* d, const double* m,
-                    double* a) {
-  for (int ab = 0; ab < n * n; ++ab) {
-    if (slots[ab] < 0) continue;
-    double x = c.dfdq * k[ab];
-    if (d) x += c.dfdv * d[ab];
-    if (m) x += c.mass * m[ab];
-    a[slots[ab]] += x;
+// global[slot] += local over an element's n×n block; slot −1 (a constant's
+// entry) only where `checked` (a term with constants in its stencils).
+void scatter_block(bool checked, int nn, const int* slots, const double* local, double* global) {
+  if (checked) {
+    for (int ab = 0; ab < nn; ++ab)
+      if (slots[ab] >= 0) global[slots[ab]] += local[ab];
+    return;
   }
+#pragma GCC unroll 4
+  for (int ab = 0; ab < nn; ++ab) global[slots[ab]] += local[ab];
 }
 
-// out[s[a]] += Σ_b block(a, b) w_b over the DoF rows of a column-major n×n block.
-void add_block_product(int n, const int* s, const double* block, const double* w, Vec& out) {
+// A[slot] += c_m m + c_v d + c_q k over an element's n×n block (d, m: null
+// where the term provides none). The block is combined in k first (a loop
+// the compiler vectorizes), then scattered: k is overwritten.
+void add_step_block(const StepWeights& c, bool checked, int n, const int* slots, double* k, const double* d,
+                    const double* m, double* a) {
+  const int nn = n * n;
+  const double cq = c.dfdq, cv = c.dfdv, cm = c.mass;
+  if (d && m)
+    for (int ab = 0; ab < nn; ++ab) k[ab] = cq * k[ab] + cv * d[ab] + cm * m[ab];
+  else if (d)
+    for (int ab = 0; ab < nn; ++ab) k[ab] = cq * k[ab] + cv * d[ab];
+  else if (m)
+    for (int ab = 0; ab < nn; ++ab) k[ab] = cq * k[ab] + cm * m[ab];
+  else
+    for (int ab = 0; ab < nn; ++ab) k[ab] *= cq;
+  scatter_block(checked, nn, slots, k, a);
+}
+
+// out[s[a]] += Σ_b block(a, b) w_b over the DoF rows of a column-major n×n
+// block; a symmetric block is read by columns (contiguous).
+void add_block_product(bool symmetric, int n, const int* s, const double* block, const double* w, Vec& out) {
   for (int a = 0; a < n; ++a) {
     if (!is_dof(s[a])) continue;
     double x = 0.0;
-    for (int b = 0; b < n; ++b) x += block[a + n * b] * w[b];
+    if (symmetric)
+      for (int b = 0; b < n; ++b) x += block[b + n * a] * w[b];
+    else
+      for (int b = 0; b < n; ++b) x += block[a + n * b] * w[b];
     out[s[a]] += x;
   }
 }
@@ -120,6 +141,7 @@ Assembly::Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std
         for (int a = 0; a < n; ++a)
           if (is_dof(s[a]) && is_dof(s[b])) plan.slots[(static_cast<size_t>(e) * n + b) * n + a] = slot_of(s[a], s[b]);
     }
+    plan.has_constants = std::find(plan.slots.begin(), plan.slots.end(), -1) != plan.slots.end();
     plans_.push_back(std::move(plan));
   }
 }
@@ -168,6 +190,7 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
   const Vec* w = step && step->rhs_dfdq != 0.0 && req.dfdq_w ? step->w : nullptr;
   // The step matrix's K_e (and the right-hand side's K_e w_e) projected, docs/models.md §3.11.2.
   const bool project = want_k && (step || req.step_stiffness) && term.projects_step_stiffness();
+  const bool k_symmetric = term.symmetric_jacobian() || project;  // K_e = −∇²E_e, or its projection
 
   auto run_range = [&](int begin, int end) {
     thread_local std::vector<double> buf;  // q, v, w, f; dfdq, dfdv, mass (kept: no allocation per evaluation)
@@ -204,21 +227,16 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
         if (is_dof(s[a])) f[s[a]] += fl[a];
       const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;
       if (av) {  // A += c_m M_e + c_v D_e + c_q K_e, docs/models.md §7.2
-        add_step_block(*step, n, slots, kl, want_d ? dl : nullptr, want_m ? ml : nullptr, av);
         if (w) {
           for (int a = 0; a < n; ++a) wl[a] = is_dof(s[a]) ? (*w)[s[a]] : 0.0;
-          add_block_product(n, s.data(), kl, wl, *req.dfdq_w);
+          add_block_product(k_symmetric, n, s.data(), kl, wl, *req.dfdq_w);
         }
+        add_step_block(*step, plan.has_constants, n, slots, kl, want_d ? dl : nullptr, want_m ? ml : nullptr, av);
         continue;
       }
-      if (!kv && !dv && !mv) continue;
-      auto scatter = [&](double* global, const double* local) {
-        for (int ab = 0; ab < n * n; ++ab)
-          if (slots[ab] >= 0) global[slots[ab]] += local[ab];
-      };
-      if (kv) scatter(kv, kl);
-      if (dv) scatter(dv, dl);
-      if (mv) scatter(mv, ml);
+      if (kv) scatter_block(plan.has_constants, n * n, slots, kl, kv);
+      if (dv) scatter_block(plan.has_constants, n * n, slots, dl, dv);
+      if (mv) scatter_block(plan.has_constants, n * n, slots, ml, mv);
     }
   };
 
@@ -255,6 +273,26 @@ double Assembly::energy(const Vec& q, const Vec& constants) const {
       auto s = term.stencil(e);
       for (int a = 0; a < plan.n; ++a) ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
       total += term.energy(e, ql.data());
+    }
+  }
+  return total;
+}
+
+double Assembly::kinetic_energy(const Vec& q, const Vec& v, const Vec& constants) const {
+  double total = 0.0;
+  std::vector<double> ql, vl;
+  for (const TermPlan& plan : plans_) {
+    const Term& term = *plan.term;
+    if (!term.provides_mass()) continue;
+    ql.resize(plan.n);
+    vl.resize(plan.n);
+    for (int e = 0; e < term.num_elements(); ++e) {
+      auto s = term.stencil(e);
+      for (int a = 0; a < plan.n; ++a) {
+        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
+        vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
+      }
+      total += term.kinetic_energy(e, ql.data(), vl.data());
     }
   }
   return total;

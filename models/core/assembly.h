@@ -57,6 +57,9 @@ class Assembly {
 
   // Potential energy of all conservative terms.
   double energy(const Vec& q, const Vec& constants) const;
+  // Kinetic energy ½ vᵀ M(q) v summed over the mass terms' elements (v is
+  // zero on constants).
+  double kinetic_energy(const Vec& q, const Vec& v, const Vec& constants) const;
   // Per term, in the order given to the constructor: its energy (conservative
   // terms; 0 otherwise) and the power of its force, Σ_e f_e · v_e [J, W]. The
   // terms must have been prepared at (q, v) (Model::evaluate does it).
@@ -81,6 +84,7 @@ class Assembly {
     std::vector<int> colour_start;  // elements sorted by colour: order[colour_start[c] .. colour_start[c+1])
     std::vector<int> order;
     std::vector<int> slots;  // per element n*n value indices into pattern_ (-1 where no DoF)
+    bool has_constants;      // some slot is −1
   };
   void add_term(const TermPlan& plan, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
                 Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const;

@@ -91,6 +91,9 @@ class Model {
   virtual bool projects_step_stiffness() const { return false; }
   // Potential energy of the conservative terms.
   virtual double potential_energy(const Vec& q) const = 0;
+  // Kinetic energy ½ vᵀ M(q) v [J]; the default assembles M(q) into `scratch`
+  // (reused between calls).
+  virtual double kinetic_energy(double t, const Vec& q, const Vec& v, Evaluation& scratch);
   // History update after an accepted step of size h ending at (t, q, v).
   virtual void accept_step(double t, const Vec& q, const Vec& v, double h) = 0;
 
@@ -163,7 +166,5 @@ void allocate_evaluation(const Model& model, Evaluation& out);
 // ∂f/∂v and (unless w.constant_mass is given) M: what Model::evaluate_step
 // forms in one pass.
 void form_step(const Evaluation& ev, const StepWeights& w, SparseMatrix& a, Vec* r);
-// Kinetic energy ½ vᵀ M(q) v; `scratch` is reused between calls.
-double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v, Evaluation& scratch);
 
 }  // namespace wl

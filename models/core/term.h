@@ -87,6 +87,9 @@ class Term {
   // Element force and requested Jacobians, from local q and v. Must be
   // thread-safe for different e (no writes to shared state).
   virtual void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const = 0;
+  // Element kinetic energy ½ v_eᵀ M_e(q) v_e [J] (terms that provide mass).
+  // The default forms M_e with evaluate(); a term with a closed form gives it.
+  virtual double kinetic_energy(int e, const double* q, const double* v) const;
 
   // Material parameters the force depends on, named by their scene keys
   // (e.g. "fem.warp_stretch_N_per_m"), and ∂f/∂p of one element for the k-th

@@ -33,9 +33,9 @@ void form_step(const Evaluation& ev, const StepWeights& w, SparseMatrix& a, Vec*
   *r = ev.force + w.rhs_dfdq * *r;
 }
 
-double kinetic_energy(Model& model, double t, const Vec& q, const Vec& v, Evaluation& scratch) {
-  if (scratch.force.size() != model.num_dofs()) allocate_evaluation(model, scratch);
-  model.evaluate(t, q, v, kMass, scratch);
+double Model::kinetic_energy(double t, const Vec& q, const Vec& v, Evaluation& scratch) {
+  if (scratch.force.size() != num_dofs()) allocate_evaluation(*this, scratch);
+  evaluate(t, q, v, kMass, scratch);
   return 0.5 * v.dot(scratch.mass * v);
 }
 
@@ -160,6 +160,10 @@ std::vector<TermModel::TermReading> TermModel::term_readings(double t, const Vec
 }
 
 double TermModel::potential_energy(const Vec& q) const { return assembly_->energy(q, constants_); }
+
+double TermModel::kinetic_energy(double, const Vec& q, const Vec& v, Evaluation&) {
+  return assembly_->kinetic_energy(q, v, constants_);
+}
 
 void TermModel::accept_step(double t, const Vec& q, const Vec& v, double h) {
   EvalContext ctx{t, &q, &v, nullptr};

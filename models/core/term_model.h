@@ -21,6 +21,8 @@ class TermModel : public Model {
   void evaluate_step(double t, const Vec& q, const Vec& v, const StepWeights& w, Evaluation& scratch, SparseMatrix& a,
                      Vec& r) override;
   double potential_energy(const Vec& q) const override;
+  // Σ_e ½ v_eᵀ M_e v_e over the mass terms' elements (no matrix formed).
+  double kinetic_energy(double t, const Vec& q, const Vec& v, Evaluation& scratch) override;
   void accept_step(double t, const Vec& q, const Vec& v, double h) override;
   bool projects_step_stiffness() const override;
   bool constrains_steps() const override;

@@ -31,4 +31,10 @@ void ImageTerm::evaluate(int e, const double* q, const double* v, const ElementO
   inner_->evaluate(e, s.data(), v, out);
 }
 
+double ImageTerm::kinetic_energy(int e, const double* q, const double* v) const {
+  std::array<double, kMaxStencil> s{};
+  shifted(e, q, s.data());
+  return inner_->kinetic_energy(e, s.data(), v);
+}
+
 }  // namespace wl

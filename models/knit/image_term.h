@@ -29,6 +29,7 @@ class ImageTerm : public Term {
   bool imex_explicit() const override { return inner_->imex_explicit(); }
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+  double kinetic_energy(int e, const double* q, const double* v) const override;
 
  private:
   static constexpr int kMaxStencil = 32;

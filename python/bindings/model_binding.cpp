@@ -170,7 +170,7 @@ void bind_model(py::module_& m) {
             check_state_size(h, q, "q");
             check_state_size(h, v, "v");
             py::dict d;
-            d["kinetic_J"] = kinetic_energy(*h.model, t, q, v, h.scratch);
+            d["kinetic_J"] = h.model->kinetic_energy(t, q, v, h.scratch);
             d["potential_J"] = h.model->potential_energy(q);
             return d;
           },

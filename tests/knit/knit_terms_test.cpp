@@ -13,6 +13,7 @@
 #include "models/knit/terms/stitch_length.h"
 #include "models/knit/terms/stitch_roll.h"
 #include "models/knit/terms/yarn_compression.h"
+#include "models/yarn/terms/segment_inertia.h"
 #include "models/yarn/terms/stretch.h"
 #include "tests/support/fd_check.h"
 #include "tests/support/node_mass.h"
@@ -367,6 +368,24 @@ TEST(ImageTerm, ShiftsTheStateAndKeepsTheDerivatives) {
   opt.floor = 1e-14;
   const auto r = test::check_element(image, 0, {{q, std::vector<double>(8, 0.0)}}, opt);
   EXPECT_TRUE(r.ok) << r.detail;
+}
+
+// A wrapped mass term's kinetic energy is that of the shifted state: the
+// segment's rest coordinate span D = u₁ − u₀ includes the period's arc length.
+TEST(ImageTerm, KineticEnergyOfTheShiftedState) {
+  auto inertia = std::make_unique<SegmentInertiaTerm>();
+  inertia->add({0, 1, 2, 3, 4, 5, 6, 7}, 2e-4);
+  const std::vector<double> shift{0, 0, 0, 3e-3, 0, 0, 0, 3.1e-3};
+  ImageTerm image(std::move(inertia), shift);
+  const std::vector<double> q{0.0, 0.0, 0.0, -2.0e-3, 0.1e-3, 0.0, 0.0, -2.0e-3};
+  const std::vector<double> v{0.1, -0.2, 0.05, 0.3, 0.1, -0.1, 0.02, -0.01};
+  std::vector<double> shifted(8);
+  for (int a = 0; a < 8; ++a) shifted[a] = q[a] + shift[a];
+  const double expected = SegmentInertiaTerm::kinetic_energy(shifted.data(), v.data(), 2e-4);
+  EXPECT_GT(expected, 0.0);
+  EXPECT_DOUBLE_EQ(image.kinetic_energy(0, q.data(), v.data()), expected);
+  // Term's generic ½ vᵀ M v from the wrapped evaluate agrees to round-off.
+  EXPECT_NEAR(image.Term::kinetic_energy(0, q.data(), v.data()), expected, 1e-13 * expected);
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ Vec perturbed(const YarnModel& m, double amplitude, unsigned seed) {
 
 double total_energy(YarnModel& m, const Vec& q, const Vec& v) {
   Evaluation scratch;
-  return kinetic_energy(m, 0.0, q, v, scratch) + m.potential_energy(q);
+  return m.kinetic_energy(0.0, q, v, scratch) + m.potential_energy(q);
 }
 
 // Random velocities on every DoF, sliding ones included (std. dev. `sd`).

@@ -122,7 +122,7 @@ void SegmentInertiaTerm::evaluate(int e, const double* q, const double* v, const
   n.col(7) = nD;
 
   VecMap f(out.force);
-  f = 0.5 * n.transpose() * qd - n * qd;
+  f = 0.5 * n.transpose().lazyProduct(qd) - n.lazyProduct(qd);  // lazy: fixed 8×8 products, no GEMV call
 
   if (out.dfdv) {
     const Vec3 ddot = xd1 - xd0;
@@ -138,12 +138,12 @@ void SegmentInertiaTerm::evaluate(int e, const double* q, const double* v, const
     sigma.bottomLeftCorner<1, 3>() = -2 / (D * D) * d.transpose();
     sigma(3, 3) = 2 * dd / (D * D * D);
     const Eigen::Matrix<double, 4, 8> s = selector();
-    const Mat8 sq = s.transpose() * sigma * s;
+    const Mat8 sq = (s.transpose() * sigma).lazyProduct(s);  // lazy: a fixed 8×8 product, no GEMM call
     const double su = ud0 * ud0 + ud0 * ud1 + ud1 * ud1;
     Vec8 r = Vec8::Zero();
     r(6) = a;
     r(7) = b;
-    MatMap(out.dfdq) = c * (su * sq - r * (sq * qd).transpose());
+    MatMap(out.dfdq) = c * (su * sq - r * sq.lazyProduct(qd).transpose());
   }
   if (out.mass) mass_block(q, rho_[e], out.mass);
 }

@@ -30,6 +30,9 @@ class SegmentInertiaTerm : public ProportionalParameterTerm<8> {
   // Kinetic energy T = ½ρ∫‖ẋ(u)‖²du of one segment in closed form
   // (docs/models.md §3.1.2): local q and v in stencil order, rho in kg/m.
   static double kinetic_energy(const double* q, const double* v, double rho);
+  double kinetic_energy(int e, const double* q, const double* v) const override {
+    return kinetic_energy(q, v, rho_[e]);
+  }
   // The 8×8 mass block M(q) of one segment (column-major into m).
   static void mass_block(const double* q, double rho, double* m);
   // δM = ρ/6 [δD A0 + B(δd, δσ)], σ = ‖d‖²/D, along dq (docs/models.md §9.2).
