@@ -14,6 +14,14 @@ namespace {
 
 constexpr int kParallelMinElements = 4096;  // below this a colour is evaluated serially
 
+// An element's local q and v (v is zero on constants).
+void gather_state(std::span<const int> s, const Vec& q, const Vec& v, const Vec& constants, double* ql, double* vl) {
+  for (size_t a = 0; a < s.size(); ++a) {
+    ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
+    vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
+  }
+}
+
 // Greedy colouring: an element gets the first colour not used by any element
 // sharing a DoF with it.
 std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colours) {
@@ -288,10 +296,7 @@ double Assembly::kinetic_energy(const Vec& q, const Vec& v, const Vec& constants
     vl.resize(plan.n);
     for (int e = 0; e < term.num_elements(); ++e) {
       auto s = term.stencil(e);
-      for (int a = 0; a < plan.n; ++a) {
-        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
-        vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
-      }
+      gather_state(s, q, v, constants, ql.data(), vl.data());
       total += term.kinetic_energy(e, ql.data(), vl.data());
     }
   }
@@ -311,10 +316,7 @@ void Assembly::term_energies_and_powers(const Vec& q, const Vec& v, const Vec& c
     fl.resize(n);
     for (int e = 0; e < term.num_elements(); ++e) {
       auto s = term.stencil(e);
-      for (int a = 0; a < n; ++a) {
-        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
-        vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
-      }
+      gather_state(s, q, v, constants, ql.data(), vl.data());
       if (term.conservative()) energy[k] += term.energy(e, ql.data());
       std::fill(fl.begin(), fl.end(), 0.0);
       term.evaluate(e, ql.data(), vl.data(), ElementOutput{fl.data()});
@@ -339,10 +341,7 @@ bool Assembly::add_parameter_derivative(const std::string& key, const Vec& q, co
     fl.resize(plan.n);
     for (int e = 0; e < term.num_elements(); ++e) {
       auto s = term.stencil(e);
-      for (int a = 0; a < plan.n; ++a) {
-        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
-        vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
-      }
+      gather_state(s, q, v, constants, ql.data(), vl.data());
       std::fill(fl.begin(), fl.end(), 0.0);
       term.parameter_derivative(e, k, ql.data(), vl.data(), fl.data());
       for (int a = 0; a < plan.n; ++a)
