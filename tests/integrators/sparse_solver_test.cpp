@@ -4,6 +4,8 @@
 // preconditioner), and as whole be-linear trajectories.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "integrators/backward_euler.h"
 #include "integrators/sparse_solver.h"
 #include "models/model_factory.h"
@@ -121,6 +123,38 @@ TEST(SparseSolver, GmresKeepsItsPreconditionerOverSteps) {
   EXPECT_EQ(s.statistics().updates, 8);
   EXPECT_LT(s.statistics().factorizations, 8);
   EXPECT_GT(s.statistics().krylov_iterations, 8);
+}
+
+// A warm start (solve(b, x, true)): from the solution itself GMRES takes no
+// iteration and returns it unchanged; from a nearby x fewer than from zero, to
+// the same tolerance; without the flag the x given is ignored.
+TEST(SparseSolver, GmresWarmStartFromANearbySolutionTakesFewerIterations) {
+  StepMatrices m(hanging_cloth(), "yarn", 2);
+  const SparseMatrix& a = m.a.back();
+  const int n = m.model->num_dofs();
+  SparseSolver s(m.model->pattern(), m.model->fixed_dofs(), {LinearSolverMethod::gmres, m.model->asymmetric_terms()});
+  const Vec b = random_rhs(n, 7);
+  ASSERT_TRUE(s.factorize(a)) << s.failure();
+  Vec x;
+  ASSERT_TRUE(s.solve(b, x)) << s.failure();
+  const long cold = s.statistics().krylov_iterations;
+  ASSERT_GT(cold, 1);
+
+  Vec same = x;
+  ASSERT_TRUE(s.solve(b, same, true)) << s.failure();
+  EXPECT_EQ(s.statistics().krylov_iterations, cold);
+  EXPECT_EQ((same - x).norm(), 0.0);
+
+  Vec nearby = x + 1e-6 * x.norm() / std::sqrt(double(n)) * random_rhs(n, 8);
+  ASSERT_TRUE(s.solve(b, nearby, true)) << s.failure();
+  const long warm = s.statistics().krylov_iterations - cold;
+  EXPECT_GE(warm, 1);
+  EXPECT_LT(warm, cold);
+  EXPECT_LE(relative_residual(a, nearby, b, m.model->fixed_dofs()), kGmresTolerance);
+
+  Vec ignored = Vec::Constant(n, 1e3);
+  ASSERT_TRUE(s.solve(b, ignored)) << s.failure();
+  EXPECT_EQ((ignored - x).norm(), 0.0);
 }
 
 // be-linear trajectories of the yarn cloth with each solver: positions within
