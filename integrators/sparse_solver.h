@@ -19,6 +19,7 @@
 // Sparse indices passed to SuiteSparse are 64-bit (umfpack_dl, cholmod_l).
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -38,9 +39,11 @@ LinearSolverMethod parse_linear_solver(const std::string& name);
 // Relative residual the gmres method reaches (the direct methods reach ~1e-14).
 constexpr double kGmresTolerance = 1e-10;
 // Free DoFs from which CHOLMOD's supernodal factorization may use OpenMP
-// threads (docs/design.md §11: one thread was faster at 3 267 free DoFs, the
-// threads at 12 675; below, waking them costs more than they give).
-constexpr int kThreadedMinFree = 8000;
+// threads: never by default. Its regions name a team of 4; on the 2-core
+// machine one thread was faster at every size measured, 1 317 to 328 197
+// DoFs (docs/design.md §11). A machine with more cores may set
+// SparseSolverOptions::threaded_min_free.
+constexpr int kThreadedMinFree = std::numeric_limits<int>::max();
 
 struct SparseSolverOptions {
   LinearSolverMethod method = LinearSolverMethod::umfpack;
@@ -48,8 +51,8 @@ struct SparseSolverOptions {
   // symmetric; else the terms whose Jacobians break symmetry.
   std::vector<std::string> asymmetric_terms = {"unknown"};
   // OpenMP threads inside the factorizations only from this many free DoFs on
-  // (kThreadedMinFree, measured); below, the regions CHOLMOD opens run on the
-  // calling thread alone. Results are bitwise the same either way.
+  // (kThreadedMinFree, measured: never); below, the regions CHOLMOD opens run
+  // on the calling thread alone. Results are bitwise the same either way.
   int threaded_min_free = -1;  // −1: kThreadedMinFree
 };
 
