@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kParallelMinElements = 4096;  // below this a colour is evaluated serially
 
-// An element's local q and v (v is zero on constants).
+// An element's local q and v (v is zero on constants; also q and a direction dq).
 void gather_state(std::span<const int> s, const Vec& q, const Vec& v, const Vec& constants, double* ql, double* vl) {
   for (size_t a = 0; a < s.size(); ++a) {
     ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
@@ -214,11 +214,7 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
     for (int k = begin; k < end; ++k) {
       const int e = plan.order[k];
       auto s = term.stencil(e);
-      for (int a = 0; a < n; ++a) {
-        const int i = s[a];
-        ql[a] = is_dof(i) ? q[i] : constants[constant_slot(i)];
-        vl[a] = is_dof(i) ? v[i] : 0.0;
-      }
+      gather_state(s, q, v, constants, ql, vl);
       // Zero only what the term will write (outputs arrive zero-filled).
       std::fill(fl, fl + n, 0.0);
       if (want_k) std::fill(kl, kl + n * n, 0.0);
@@ -363,10 +359,7 @@ void Assembly::add_mass_directional_product(const Vec& q, const Vec& dq, const V
     ml.resize(n * n);
     for (int e = 0; e < term.num_elements(); ++e) {
       auto s = term.stencil(e);
-      for (int a = 0; a < n; ++a) {
-        ql[a] = is_dof(s[a]) ? q[s[a]] : constants[constant_slot(s[a])];
-        dql[a] = is_dof(s[a]) ? dq[s[a]] : 0.0;
-      }
+      gather_state(s, q, dq, constants, ql.data(), dql.data());
       std::fill(ml.begin(), ml.end(), 0.0);
       term.mass_directional_derivative(e, ql.data(), dql.data(), ml.data());
       for (int a = 0; a < n; ++a) {

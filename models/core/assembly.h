@@ -83,8 +83,8 @@ class Assembly {
     int n;
     std::vector<int> colour_start;  // elements sorted by colour: order[colour_start[c] .. colour_start[c+1])
     std::vector<int> order;
-    std::vector<int> slots;  // per element n*n value indices into pattern_ (-1 where no DoF)
-    bool has_constants;      // some slot is −1
+    std::vector<int> slots;      // per element n*n value indices into pattern_ (-1 where no DoF)
+    bool has_constants = false;  // some slot is −1
   };
   void add_term(const TermPlan& plan, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
                 Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const;
