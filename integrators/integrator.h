@@ -99,7 +99,7 @@ struct IntegratorCapabilities {
   bool sensitivities = false;         // carries forward parameter sensitivities
   // A one-step method that can retake a recorded step sequence in fixed-step
   // mode (advance_to each step end with dt ≥ the step): its global error is
-  // estimated by halving every recorded step (experiments/driver/time_error.h).
+  // estimated by halving every recorded step (driver/time_error.h).
   bool replays_steps = false;
   EnergyBehaviour energy = EnergyBehaviour::dissipative;
   // Honours a model's admissible states (Model::constrains_steps, docs/design.md

@@ -2,7 +2,7 @@
 into the fidelity.csv and fidelity.json one `weavelab fidelity` run writes:
 the reference's row from the reference job, each rung's row from its job (the
 reference row each rung job carries is dropped), and what depends on all rows
-computed again over them by the rules of experiments/driver/fidelity.h: the
+computed again over them by the rules of driver/fidelity.h: the
 Pareto front of (CPU time, worst-frame RMS distance) among the complete rows,
 and the cheapest rung within each tolerance whose own time error is within it
 too, with its speed-up over the reference.

@@ -204,7 +204,7 @@ struct Scene {
   // From settle_after_s on, fixed steps of settle_dt_s (0: none): a drape that
   // has fallen settles under backward Euler's numerical damping (docs/models.md §3.11.6).
   double settle_after_s = 0.0, settle_dt_s = 0.0;
-  // Estimate the run's global time error (experiments/driver/time_error.h).
+  // Estimate the run's global time error (driver/time_error.h).
   bool error_estimate = false;
   // Target of the run's time error, mean over frames of the RMS over nodes [m];
   // 0: none. When set the run chooses its integrator and tolerance (docs/models.md §7.9).

@@ -1,6 +1,6 @@
 #include "python/bindings/errors.h"
 
-#include "experiments/driver/run_settings.h"
+#include "driver/run_settings.h"
 
 namespace py = pybind11;
 

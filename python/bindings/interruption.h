@@ -1,5 +1,5 @@
 // Ctrl-C during a long call (docs/python.md, "Interrupting"): on Python's main
-// thread the run driver's handlers (experiments/driver/interrupt.h) stand in
+// thread the run driver's handlers (driver/interrupt.h) stand in
 // for Python's during the call, so the step under way ends and the call
 // returns what it has, with outcome "interrupted"; a second Ctrl-C ends the
 // process, as on the command line. Calls from other threads keep Python's
@@ -7,7 +7,7 @@
 #pragma once
 #include <optional>
 
-#include "experiments/driver/interrupt.h"
+#include "driver/interrupt.h"
 
 namespace wl::python {
 

@@ -6,9 +6,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include "experiments/driver/experiment_meta.h"
-#include "experiments/driver/resolution.h"
-#include "experiments/driver/run_settings.h"
+#include "driver/experiment_meta.h"
+#include "driver/resolution.h"
+#include "driver/run_settings.h"
 #include "integrators/integrator.h"
 #include "models/model_factory.h"
 #include "python/bindings/errors.h"

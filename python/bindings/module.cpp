@@ -3,7 +3,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "experiments/driver/determinism.h"
+#include "driver/determinism.h"
 #include "integrators/integrator.h"
 #include "models/model_factory.h"
 #include "python/bindings/errors.h"

@@ -4,8 +4,8 @@
 
 #include <pybind11/stl.h>
 
-#include "experiments/driver/run.h"
-#include "experiments/driver/run_settings.h"
+#include "driver/run.h"
+#include "driver/run_settings.h"
 #include "python/bindings/errors.h"
 #include "python/bindings/frames.h"
 #include "python/bindings/interruption.h"

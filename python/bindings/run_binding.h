@@ -1,5 +1,5 @@
 // weavelab._run: a run of a scene through the run driver
-// (experiments/driver/run.h), the frames kept in memory as arrays and,
+// (driver/run.h), the frames kept in memory as arrays and,
 // with an output folder, written as by `weavelab run`.
 #pragma once
 #include <pybind11/pybind11.h>

@@ -2,8 +2,8 @@
 
 #include <pybind11/stl.h>
 
-#include "experiments/driver/calibrate.h"
-#include "experiments/driver/fit_command.h"
+#include "driver/calibrate.h"
+#include "driver/fit_command.h"
 
 namespace py = pybind11;
 

@@ -1,5 +1,5 @@
 // weavelab._calibrate and weavelab._fit: `weavelab calibrate` and
-// `weavelab fit` through their drivers (experiments/driver/calibrate.h,
+// `weavelab fit` through their drivers (driver/calibrate.h,
 // fit_command.h), writing the same output folders; the Python layer returns
 // calibration.json and fit.json as dicts.
 #pragma once

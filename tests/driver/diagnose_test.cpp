@@ -9,7 +9,7 @@
 #include <random>
 #include <sstream>
 
-#include "experiments/driver/diagnose.h"
+#include "driver/diagnose.h"
 #include "models/core/term_model.h"
 #include "models/model_factory.h"
 #include "models/scene/scene.h"

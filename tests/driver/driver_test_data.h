@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "experiments/driver/recorded_run.h"
+#include "driver/recorded_run.h"
 #include "models/scene/scene.h"
 #include "tests/output/output_test_util.h"
 

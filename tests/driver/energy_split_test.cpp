@@ -1,4 +1,4 @@
-// Warp/weft split of the stretch and bending energies (experiments/driver/energy_split.h):
+// Warp/weft split of the stretch and bending energies (driver/energy_split.h):
 // the parts sum to the term's energy, and a deformation of the warps alone
 // (stretched and bent along u, the wefts straight and unstretched) has no weft
 // part, and the other way round, in both models.
@@ -8,7 +8,7 @@
 #include <map>
 #include <random>
 
-#include "experiments/driver/energy_split.h"
+#include "driver/energy_split.h"
 #include "models/core/term_model.h"
 #include "models/fem/fem_model.h"
 #include "models/model_factory.h"

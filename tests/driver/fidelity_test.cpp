@@ -8,9 +8,9 @@
 
 #include <filesystem>
 
-#include "experiments/driver/fidelity.h"
-#include "experiments/driver/fidelity_reference.h"
-#include "experiments/driver/recorded_run.h"
+#include "driver/fidelity.h"
+#include "driver/fidelity_reference.h"
+#include "driver/recorded_run.h"
 #include "models/model_factory.h"
 
 namespace wl {

@@ -1,4 +1,4 @@
-// The modal comparison (experiments/driver/modes.h, docs/models.md §10): the
+// The modal comparison (driver/modes.h, docs/models.md §10): the
 // linearization about the hanging equilibrium predicts the free vibration of
 // the nonlinear model; each model's modes against themselves have MAC 1 on the
 // diagonal; on a small cloth the yarn level's lowest modes find continuum
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "experiments/driver/modes.h"
+#include "driver/modes.h"
 #include "integrators/integrator.h"
 #include "models/model_factory.h"
 #include "models/scene/scene.h"

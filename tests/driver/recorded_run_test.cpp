@@ -1,7 +1,7 @@
-// The output times of a recorded run (experiments/driver/recorded_run.h).
+// The output times of a recorded run (driver/recorded_run.h).
 #include <gtest/gtest.h>
 
-#include "experiments/driver/recorded_run.h"
+#include "driver/recorded_run.h"
 
 namespace wl {
 namespace {

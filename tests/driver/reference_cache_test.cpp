@@ -1,11 +1,11 @@
-// The reference trajectory and its cache (experiments/driver/reference_cache.h).
+// The reference trajectory and its cache (driver/reference_cache.h).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "experiments/driver/experiment_meta.h"
-#include "experiments/driver/reference_cache.h"
+#include "driver/experiment_meta.h"
+#include "driver/reference_cache.h"
 #include "tests/driver/driver_test_data.h"
 #include "tests/output/output_test_util.h"
 

@@ -3,8 +3,8 @@
 
 #include <limits>
 
-#include "experiments/driver/memory_estimate.h"
-#include "experiments/driver/run_settings.h"
+#include "driver/memory_estimate.h"
+#include "driver/run_settings.h"
 
 namespace wl {
 namespace {

@@ -1,7 +1,7 @@
-// The stretch-modulus multiplier (experiments/driver/scene_scaling.h).
+// The stretch-modulus multiplier (driver/scene_scaling.h).
 #include <gtest/gtest.h>
 
-#include "experiments/driver/scene_scaling.h"
+#include "driver/scene_scaling.h"
 #include "models/fem/fem_material.h"
 #include "tests/driver/driver_test_data.h"
 

@@ -1,9 +1,9 @@
-// The stability bisection on synthetic probes (experiments/driver/stability_bisection.h).
+// The stability bisection on synthetic probes (driver/stability_bisection.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "experiments/driver/stability_bisection.h"
+#include "driver/stability_bisection.h"
 
 namespace wl {
 namespace {

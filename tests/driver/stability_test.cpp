@@ -1,10 +1,10 @@
-// The stability experiment end to end on a 5×5 cloth (experiments/driver/stability.h).
+// The stability experiment end to end on a 5×5 cloth (driver/stability.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "experiments/driver/stability.h"
+#include "driver/stability.h"
 #include "tests/driver/driver_test_data.h"
 #include "tests/output/output_test_util.h"
 

@@ -1,4 +1,4 @@
-// The global time error estimate (experiments/driver/time_error.h) against
+// The global time error estimate (driver/time_error.h) against
 // true errors: a closed-form motion, and a 6×6 cloth in wind against a
 // converged reference.
 #include <gtest/gtest.h>
@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "experiments/driver/accuracy.h"
-#include "experiments/driver/time_error.h"
-#include "experiments/driver/trajectory_error.h"
+#include "driver/accuracy.h"
+#include "driver/time_error.h"
+#include "driver/trajectory_error.h"
 #include "tests/support/test_scenes.h"
 
 namespace wl {

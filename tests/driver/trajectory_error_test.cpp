@@ -1,9 +1,9 @@
-// The error metric of a run against a reference (experiments/driver/trajectory_error.h).
+// The error metric of a run against a reference (driver/trajectory_error.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "experiments/driver/trajectory_error.h"
+#include "driver/trajectory_error.h"
 #include "tests/driver/driver_test_data.h"
 
 namespace wl {

@@ -1,7 +1,7 @@
 // `weavelab pull` (docs/models.md §11.8): the woven strip against its closed
 // form, the knit softer than the woven of the same yarn length per area, and
 // bad input refused before anything is written.
-#include "experiments/driver/uniaxial_pull.h"
+#include "driver/uniaxial_pull.h"
 
 #include <gtest/gtest.h>
 

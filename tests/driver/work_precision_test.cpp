@@ -1,9 +1,9 @@
-// The work-precision experiment end to end on a 5×5 cloth (experiments/driver/work_precision.h).
+// The work-precision experiment end to end on a 5×5 cloth (driver/work_precision.h).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "experiments/driver/work_precision.h"
+#include "driver/work_precision.h"
 #include "tests/driver/driver_test_data.h"
 #include "tests/output/output_test_util.h"
 

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include "experiments/driver/modal_match.h"
+#include "driver/modal_match.h"
 #include "integrators/modal_solver.h"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "experiments/driver/run.h"
+#include "driver/run.h"
 #include "models/scene/scene.h"
 
 namespace wl {

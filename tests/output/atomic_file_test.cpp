@@ -1,4 +1,4 @@
-#include "experiments/output/atomic_file.h"
+#include "output/atomic_file.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

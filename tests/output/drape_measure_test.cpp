@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "experiments/output/pvd_series.h"
+#include "output/pvd_series.h"
 #include "tests/output/output_test_util.h"
 
 namespace wl {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "experiments/output/atomic_file.h"
-#include "experiments/output/json_writer.h"
-#include "experiments/output/metrics_csv.h"
-#include "experiments/output/pvd_series.h"
+#include "output/atomic_file.h"
+#include "output/json_writer.h"
+#include "output/metrics_csv.h"
+#include "output/pvd_series.h"
 #include "tests/output/output_test_util.h"
 
 namespace wl {

@@ -1,11 +1,11 @@
-#include "experiments/output/json_writer.h"
+#include "output/json_writer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-#include "experiments/output/atomic_file.h"
+#include "output/atomic_file.h"
 #include "tests/output/output_test_util.h"
 
 namespace wl {

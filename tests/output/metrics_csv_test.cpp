@@ -1,4 +1,4 @@
-#include "experiments/output/metrics_csv.h"
+#include "output/metrics_csv.h"
 
 #include <gtest/gtest.h>
 

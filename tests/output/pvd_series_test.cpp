@@ -1,4 +1,4 @@
-#include "experiments/output/pvd_series.h"
+#include "output/pvd_series.h"
 
 #include <gtest/gtest.h>
 

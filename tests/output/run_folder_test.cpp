@@ -3,7 +3,7 @@
 
 #include <fstream>
 
-#include "experiments/output/run_folder.h"
+#include "output/run_folder.h"
 
 namespace wl {
 namespace {

@@ -1,7 +1,7 @@
 // count_self_intersections (docs/models.md §3.11.7): crossing triangles are
 // counted, neighbours sharing a vertex or an edge are not, and a quad grid
 // folded through itself is caught.
-#include "experiments/output/self_intersection.h"
+#include "output/self_intersection.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-#include "experiments/output/vtu_writer.h"
+#include "output/vtu_writer.h"
 
 #include <gtest/gtest.h>
 
-#include "experiments/output/atomic_file.h"
+#include "output/atomic_file.h"
 #include "tests/output/output_test_util.h"
 
 namespace wl {

@@ -1,0 +1,607 @@
+#include "driver/calibrate.h"
+#include "driver/time_error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "calibration/fem_test_patch.h"
+#include "calibration/knit_test_patch.h"
+#include "driver/experiment_meta.h"
+#include "driver/recorded_run.h"
+#include "output/atomic_file.h"
+#include "output/csv_table.h"
+#include "output/json_writer.h"
+#include "models/fem/fem_model.h"
+
+namespace wl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Reads a whole text file; throws std::runtime_error naming the path.
+std::string read_text_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read '" + path.string() + "'");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The yarn crossings of one output frame: positions and material coordinates (u, v).
+struct CrossingFrame {
+  Eigen::MatrixXd x;  // n × 3
+  std::vector<Vec2> uv;
+};
+
+struct VariantRun {
+  std::string name;
+  std::vector<double> times, rms, max;
+  RecordedRun run;
+};
+
+// Yarn-vs-continuum distance per frame, at each crossing's material point
+// (the continuum surface interpolated in the triangle that holds (u, v)).
+VariantRun run_continuum_variant(const std::string& name, const Scene& scene, const std::vector<CrossingFrame>& yarn,
+                                 const IntegratorOptions& iopt, bool progress) {
+  VariantRun v;
+  v.name = name;
+  const FemModel geometry(scene);
+  size_t k = 0;
+  RecordOptions rec;
+  rec.progress = progress;
+  rec.label = name;
+  rec.step_ends = true;  // for its time error estimate
+  rec.on_frame = [&](const Frame& f) {
+    if (k >= yarn.size()) return;
+    Vec q(3 * f.points.rows());
+    for (Eigen::Index i = 0; i < f.points.rows(); ++i) q.segment<3>(3 * i) = f.points.row(i).transpose();
+    double sum = 0, mx = 0;
+    int compared = 0;
+    const CrossingFrame& y = yarn[k];
+    for (Eigen::Index n = 0; n < y.x.rows(); ++n) {
+      Vec3 s;
+      if (!geometry.surface_point(q, y.uv[n], &s)) continue;  // a crossing slid out of the mesh: not compared
+      const double d = (s - y.x.row(n).transpose()).norm();
+      sum += d * d;
+      mx = std::max(mx, d);
+      ++compared;
+    }
+    v.times.push_back(f.time);
+    v.rms.push_back(compared > 0 ? std::sqrt(sum / compared) : NAN);
+    v.max.push_back(mx);
+    ++k;
+  };
+  v.run = run_recorded(scene, "fem", scene.integrator, iopt, rec);
+  return v;
+}
+
+}  // namespace
+
+Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
+  s.fem.parameter_file.clear();
+  s.fem.border_strip = border_strip;
+  s.fem.areal_density_kg_per_m2 = m.areal_density_kg_per_m2;
+  s.fem.warp_stretch_N_per_m = m.warp_stretch_N_per_m;
+  s.fem.weft_stretch_N_per_m = m.weft_stretch_N_per_m;
+  s.fem.shear_N_per_m = m.shear_N_per_m;
+  s.fem.shear_lock_angle_rad = m.shear_lock_angle_rad;
+  s.fem.shear_lock_exponent = m.shear_lock_exponent;
+  s.fem.warp_bending_N_m = m.warp_bending_N_m;
+  s.fem.weft_bending_N_m = m.weft_bending_N_m;
+  s.fem.diagonal_bending_N_m.reset();
+  if (m.diagonal_bending_N_m > 0) s.fem.diagonal_bending_N_m = m.diagonal_bending_N_m;
+  auto optional = [](double v) { return v > 0 ? std::optional<double>(v) : std::nullopt; };
+  s.fem.stretch_coupling_N_per_m = optional(m.stretch_coupling_N_per_m);
+  s.fem.warp_stretch_quartic_N_per_m = optional(m.warp_stretch_quartic_N_per_m);
+  s.fem.weft_stretch_quartic_N_per_m = optional(m.weft_stretch_quartic_N_per_m);
+  s.fem.areal_stretch_quartic_N_per_m = optional(m.areal_stretch_quartic_N_per_m);
+  s.fem.shear_law = m.shear_knots_rad.empty() ? FemSettings::ShearLaw::linear_lock : FemSettings::ShearLaw::spline;
+  s.fem.shear_knots_rad = m.shear_knots_rad;
+  for (int i = 0; i < FemSettings::kMaxShearKnots; ++i) {
+    s.fem.shear_knot_N_per_m[i].reset();
+    if (i < static_cast<int>(m.shear_knots_rad.size()) && m.shear_knot_N_per_m[i] > 0)
+      s.fem.shear_knot_N_per_m[i] = m.shear_knot_N_per_m[i];
+  }
+  return s;
+}
+
+namespace {
+
+double curve_range(const std::vector<double>& r) {
+  double m = 0.0;
+  for (double x : r) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// A knit's first guess (docs/calibration.md §8): nothing derives a knit's membrane stiffness
+// from its yarn, so each stiffness a test informs starts at that test's secant at its first
+// load, R(λ₁)/λ₁ (the biaxial test's shared between warp and weft when no uniaxial test
+// informs them); the rest is default_fem_material's.
+FemMaterial knit_first_guess(const Scene& test_scene, const std::vector<FitCurve>& curves) {
+  FemMaterial m = default_fem_material(test_scene);
+  auto secant = [&](TestKind kind) {
+    for (const FitCurve& c : curves)
+      if (c.test.kind == kind && !c.test.ladder.empty() && c.target[0] > 0) return c.target[0] / c.test.ladder[0];
+    return 0.0;
+  };
+  auto set = [](double& key, double value) {
+    if (value > 0) key = value;
+  };
+  set(m.warp_stretch_N_per_m, 0.5 * secant(TestKind::biaxial));
+  set(m.weft_stretch_N_per_m, 0.5 * secant(TestKind::biaxial));
+  set(m.warp_stretch_N_per_m, secant(TestKind::uniaxial_warp));
+  set(m.weft_stretch_N_per_m, secant(TestKind::uniaxial_weft));
+  set(m.shear_N_per_m, secant(TestKind::shear));
+  set(m.warp_bending_N_m, secant(TestKind::bending_warp));
+  set(m.weft_bending_N_m, secant(TestKind::bending_weft));
+  return m;
+}
+
+// First guesses of the stretch law's extras from the curves (docs/calibration.md §8). A homogeneous
+// patch answers R_warp = k_u ε + (q_u + q_a)ε³, R_weft likewise and R_biaxial = (k_u + k_v + 2k_c)ε +
+// (q_u + q_v + 16q_a)ε³ (docs/models.md §6.3.1). The cubic part of a curve: least squares of
+// R = kε + cε³; 0 when the ladder cannot tell the two apart (fewer than two distinct strains).
+double cubic_part(const FitCurve& c) {
+  double a11 = 0, a12 = 0, a22 = 0, b1 = 0, b2 = 0;
+  for (size_t i = 0; i < c.target.size(); ++i) {
+    const double e = c.test.ladder[i], e3 = e * e * e;
+    a11 += e * e, a12 += e * e3, a22 += e3 * e3, b1 += e * c.target[i], b2 += e3 * c.target[i];
+  }
+  const double det = a11 * a22 - a12 * a12;
+  return det > 1e-12 * a11 * a22 ? (a11 * b2 - a12 * b1) / det : 0.0;
+}
+
+const FitCurve* find_curve(const std::vector<FitCurve>& curves, TestKind kind) {
+  for (const FitCurve& c : curves)
+    if (c.test.kind == kind && !c.test.rotated) return &c;
+  return nullptr;
+}
+
+// k_c = ½(biaxial − warp − weft secant at the first load), kept within (2 %, 90 %) of √(k_u k_v);
+// q from each uniaxial curve (else half the biaxial's), and with all three curves q_a from the
+// biaxial's excess, (c_b − c_u − c_v)/14; each at least 1 % of k over the largest strain²; a
+// direction no curve informs keeps no quartic (the fit does not free it).
+void stretch_law_first_guess(const std::vector<FitCurve>& curves, bool coupling, bool stiffening, FemMaterial& m) {
+  const FitCurve *u = find_curve(curves, TestKind::uniaxial_warp), *v = find_curve(curves, TestKind::uniaxial_weft),
+                 *b = find_curve(curves, TestKind::biaxial);
+  if (coupling) {
+    const double bound = std::sqrt(m.warp_stretch_N_per_m * m.weft_stretch_N_per_m);
+    auto secant = [](const FitCurve* c, double fallback) { return c ? c->target[0] / c->test.ladder[0] : fallback; };
+    const double k = 0.5 * (secant(b, 0) - secant(u, m.warp_stretch_N_per_m) - secant(v, m.weft_stretch_N_per_m));
+    m.stretch_coupling_N_per_m = std::clamp(k, 0.02 * bound, 0.9 * bound);
+  }
+  if (stiffening) {
+    auto quartic = [&](const FitCurve* c, double k) {
+      if (!c && !b) return 0.0;
+      const double q = c ? cubic_part(*c) : b ? 0.5 * cubic_part(*b) : 0.0, e = c ? c->test.ladder.back() : 0.1;
+      return std::max(q, 0.01 * k / (e * e));
+    };
+    m.warp_stretch_quartic_N_per_m = quartic(u, m.warp_stretch_N_per_m);
+    m.weft_stretch_quartic_N_per_m = quartic(v, m.weft_stretch_N_per_m);
+    if (u && v && b) {
+      const double e = b->test.ladder.back(), k = 0.5 * (m.warp_stretch_N_per_m + m.weft_stretch_N_per_m);
+      m.areal_stretch_quartic_N_per_m =
+          std::max((cubic_part(*b) - cubic_part(*u) - cubic_part(*v)) / 14.0, 0.01 * k / (e * e));
+    }
+  }
+}
+
+double mean(const std::vector<double>& x) {
+  return x.empty() ? 0.0 : std::accumulate(x.begin(), x.end(), 0.0) / x.size();
+}
+double maximum(const std::vector<double>& x) { return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end()); }
+double cpu_per_step(const RecordedRun& r) { return r.stats.steps > 0 ? r.cpu_s / r.stats.steps : 0.0; }
+
+// The parameter file holds the knot values; the law and its knot angles belong in the scene.
+std::string shear_law_note(const FemMaterial& m) {
+  if (m.shear_knots_rad.empty()) return "linear_lock";
+  std::ostringstream k;
+  k.precision(17);
+  for (size_t i = 0; i < m.shear_knots_rad.size(); ++i) k << (i ? ", " : "") << m.shear_knots_rad[i];
+  return "fitted with [fem] shear_law = \"spline\" and shear_knots_rad = [" + k.str() + "]: set them in the scene";
+}
+
+}  // namespace
+
+double matched_areal_density(const Scene& s) {
+  double mass = 0.0;
+  for (int j = 0; j < s.warps; ++j) mass += s.warp_type(j).density_kg_per_m * (s.wefts - 1) * s.spacing_m;
+  for (int i = 0; i < s.wefts; ++i) mass += s.weft_type(i).density_kg_per_m * (s.warps - 1) * s.spacing_m;
+  return mass / ((s.wefts - 1) * (s.warps - 1) * s.spacing_m * s.spacing_m);
+}
+
+CalibratePlan plan_calibration(const CalibrateConfig& c) {
+  CalibratePlan p;
+  p.scene = load_scene(c.scene_path.string());
+  p.scene_text = read_text_file(c.scene_path);
+  if (p.scene.knit) {
+    // Knit patches (docs/calibration.md §8): what has no knit counterpart yet is refused.
+    const std::string knit = "calibrate: " + c.scene_path.string() + " is knitted ([cloth.pattern]): ";
+    if (!c.validate.empty())
+      throw std::invalid_argument(
+          knit +
+          "--validate: not offered for knits, expected none (measure the calibrated continuum on "
+          "a knit scene with `weavelab fidelity --fem-params`, docs/calibration.md §8)");
+    if (c.border_strip)
+      throw std::invalid_argument(knit + "--border-strip: a woven border's half spacing, expected without it");
+    if (c.grid_line_bending)
+      throw std::invalid_argument(knit +
+                                  "--grid-line-bending: its line widths assume one crossing spacing, the contact grid "
+                                  "has two (W/2, C); expected hinge bending");
+  }
+  const int size =
+      p.scene.knit ? std::min(p.scene.knit->courses, p.scene.knit->wales) : std::min(p.scene.warps, p.scene.wefts);
+  const int patch = c.patch > 0    ? c.patch
+                    : p.scene.knit ? default_knit_patch(p.scene, std::min(size, 33))
+                                   : std::max(std::min(size, 33), minimum_patch(p.scene));
+  p.test_scene = material_test_scene(p.scene, patch, c.sliding);  // too small: invalid_argument
+  p.test_scene.fem.border_strip = c.border_strip;
+  p.test_scene.fem.grid_line_bending = c.grid_line_bending;
+  std::vector<std::string> names = c.tests.empty() ? default_test_names() : c.tests;
+  for (const std::string& name : names) {
+    TestSpec t = test_spec(name);  // unknown: invalid_argument
+    const TestKind kind = t.kind;
+    if (p.scene.knit && t.rotated && in_plane(kind))
+      throw std::invalid_argument("--tests " + name + ": " + c.scene_path.string() +
+                                  " is knitted, and its in-plane tests hold every node's z (docs/calibration.md §8): "
+                                  "expected it unrotated");
+    for (const TestSpec& other : p.tests)
+      if (test_name(other) == test_name(t)) throw std::invalid_argument("--tests: '" + name + "' is listed twice");
+    t.ladder = p.scene.knit ? default_knit_ladder(kind, p.test_scene) : default_ladder(kind, patch, p.scene.spacing_m);
+    if (auto it = c.ladders.find(name); it != c.ladders.end()) t.ladder = it->second;
+    if (t.ladder.size() < 2) throw std::invalid_argument("--ladder " + name + ": need at least 2 loads");
+    for (size_t i = 0; i < t.ladder.size(); ++i)
+      if (!(t.ladder[i] > 0) || !std::isfinite(t.ladder[i]) || (i > 0 && !(t.ladder[i] > t.ladder[i - 1])))
+        throw std::invalid_argument("--ladder " + name + ": got " + std::to_string(t.ladder[i]) + " at position " +
+                                    std::to_string(i + 1) + ", expected increasing finite loads > 0 [" +
+                                    load_unit(kind) + "]");
+    if (kind == TestKind::shear && t.ladder.back() >= 1.5)
+      throw std::invalid_argument("--ladder shear: shear angles must stay below 1.5 rad, got " +
+                                  std::to_string(t.ladder.back()));
+    p.tests.push_back(t);
+  }
+  for (const auto& [name, ladder] : c.ladders) {
+    const std::string canonical = test_name(test_spec(name));  // unknown: invalid_argument
+    if (std::none_of(p.tests.begin(), p.tests.end(), [&](const TestSpec& t) { return test_name(t) == canonical; }))
+      throw std::invalid_argument("--ladder " + name + ": the test is not among --tests");
+  }
+  if (!c.shear_knots_rad.empty()) {
+    const auto& k = c.shear_knots_rad;
+    if (k.size() > FemSettings::kMaxShearKnots)
+      throw std::invalid_argument("--shear-spline: got " + std::to_string(k.size()) + " knots, expected at most " +
+                                  std::to_string(FemSettings::kMaxShearKnots));
+    for (size_t i = 0; i < k.size(); ++i)
+      if (!(k[i] > (i ? k[i - 1] : 0.0)) || k[i] > 1.5)
+        throw std::invalid_argument("--shear-spline: got " + std::to_string(k[i]) + " at position " +
+                                    std::to_string(i + 1) + ", expected increasing shear angles in (0, 1.5] rad");
+  }
+  auto has = [&](TestKind kind) {
+    return std::any_of(p.tests.begin(), p.tests.end(), [&](const TestSpec& t) { return t.kind == kind; });
+  };
+  if (c.stretch_coupling && !has(TestKind::biaxial))
+    throw std::invalid_argument("--stretch-coupling: no test informs the coupling, expected biaxial among --tests");
+  if (c.stretch_stiffening && !has(TestKind::uniaxial_warp) && !has(TestKind::uniaxial_weft) && !has(TestKind::biaxial))
+    throw std::invalid_argument(
+        "--stretch-stiffening: no test informs it, expected uniaxial-warp, uniaxial-weft or biaxial among --tests");
+  FemMaterial probe;
+  for (const std::string& key : c.fit.free) (void)material_value(probe, key);  // unknown: invalid_argument
+  if (c.fit.loss != "none" && c.fit.loss != "huber" && c.fit.loss != "cauchy")
+    throw std::invalid_argument("--loss: got '" + c.fit.loss + "', expected none, huber or cauchy");
+  if (c.fit.residuals != "range" && c.fit.residuals != "relative")
+    throw std::invalid_argument("--residuals: got '" + c.fit.residuals + "', expected range or relative");
+  if (c.fit.starts < 1) throw std::invalid_argument("--starts: need at least 1, got " + std::to_string(c.fit.starts));
+  // A bad parameter file is reported before anything runs (a knit's continuum has no material
+  // without one: only the file is read, docs/models.md §11.9).
+  if (!p.scene.knit) {
+    (void)fem_material(p.scene);
+  } else if (!p.scene.fem.parameter_file.empty()) {
+    FemMaterial law;
+    law.shear_knots_rad = p.scene.fem.shear_knots_rad;
+    (void)read_fem_parameter_file(p.scene.fem.parameter_file, law);
+  }
+  for (const auto& v : c.validate) {
+    p.validation_scenes.push_back(at_resolution(load_scene(v.string()), c.resolution));
+    p.validation_texts.push_back(read_text_file(v));
+  }
+  return p;
+}
+
+CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& p) {
+  CalibrateSummary out;
+  const int patch = p.test_scene.knit ? p.test_scene.knit->courses : p.test_scene.warps;
+  if (c.progress)
+    std::fprintf(stderr, "calibrate: %zu tests on a %d x %d %spatch of %s\n", p.tests.size(), patch, patch,
+                 p.test_scene.knit ? "(courses x wales) knit " : "", c.scene_path.string().c_str());
+
+  // 1. Yarn level.
+  auto t0 = Clock::now();
+  // The tests run at once, one per hardware thread as the fit's starts; the curves do not depend on it.
+  const int threads = c.fit.threads > 0 ? c.fit.threads : static_cast<int>(std::thread::hardware_concurrency());
+  std::vector<ResponsePoint> rests;
+  const std::vector<ResponseCurve> yarn_curves = run_yarn_tests(
+      p.test_scene, p.tests, threads,
+      [&](int k, const ResponseCurve& r) {
+        if (c.progress)
+          std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(p.tests[k]).c_str(), r.points.size(),
+                       p.tests[k].ladder.size(), r.complete ? "" : ", stopped:", r.message.c_str());
+      },
+      &rests);
+  std::vector<FitCurve> curves;
+  std::vector<double> at_rest;  // R(0) per test: knits (docs/calibration.md §8)
+  for (size_t k = 0; k < p.tests.size(); ++k) {
+    const TestSpec& t = p.tests[k];
+    const ResponseCurve& r = yarn_curves[k];
+    const ResponsePoint& rest = rests[k];  // R(0) of a knit
+    if (r.points.size() < 2) throw std::runtime_error("yarn-level test did not converge: " + r.message);
+    FitCurve fc{{t.kind, {}, t.rotated}, {}};
+    // A knit's target is the change from its self-stressed rest shape, R(λ) − R(0)
+    // (docs/calibration.md §8); a woven patch is stress-free at rest (R(0) is not solved for).
+    for (const ResponsePoint& pt : r.points) {
+      fc.test.ladder.push_back(pt.load);
+      fc.target.push_back(p.scene.knit ? pt.response - rest.response : pt.response);
+    }
+    if (p.scene.knit && c.progress)
+      std::fprintf(stderr, "       %-14s R(0) = %.4g %s, %.3g %% of the curve's range\n", "", rest.response,
+                   response_unit(t.kind).c_str(), 100 * std::abs(rest.response) / curve_range(fc.target));
+    at_rest.push_back(rest.response);
+    curves.push_back(fc);
+  }
+  out.yarn_tests_s = seconds_since(t0);
+
+  // 2. Continuum tests at the first guess (also the time of one evaluation of every test).
+  FemMaterial guess = p.scene.knit ? knit_first_guess(p.test_scene, curves) : fem_material(p.scene);
+  if (c.diagonal_bending && guess.diagonal_bending_N_m <= 0)  // start where the law is off: the mean
+    guess.diagonal_bending_N_m = 0.5 * (guess.warp_bending_N_m + guess.weft_bending_N_m);
+  stretch_law_first_guess(curves, c.stretch_coupling, c.stretch_stiffening, guess);
+  if (!c.shear_knots_rad.empty()) guess.shear_knots_rad = c.shear_knots_rad;
+  for (size_t i = 0; i < guess.shear_knots_rad.size(); ++i)  // start where the law is linear: k_i = k_sh
+    if (guess.shear_knot_N_per_m[i] <= 0) guess.shear_knot_N_per_m[i] = guess.shear_N_per_m;
+  FemTestPatches patches(p.test_scene);  // kept over the fit's curve evaluations
+  const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
+    return patches.run(m, t, keys);
+  };
+  t0 = Clock::now();
+  std::vector<ResponseCurve> first;
+  for (const FitCurve& fc : curves) first.push_back(continuum(guess, fc.test, {}));
+  out.fem_tests_s = seconds_since(t0);
+
+  // 3. Fit.
+  t0 = Clock::now();
+  FitOptions fo = c.fit;
+  fo.progress = c.progress;
+  out.fit = fit_continuum(curves, guess, continuum, fo);
+  out.fit_s = seconds_since(t0);
+  FemMaterial calibrated = out.fit.material;
+  calibrated.areal_density_kg_per_m2 = p.scene.knit ? knit_areal_density(p.test_scene) : matched_areal_density(p.scene);
+  if (c.progress) {
+    std::fprintf(stderr, "  fit: %s (cost %.4g, %d iterations, %d curve evaluations, %.1f s)\n",
+                 out.fit.converged ? "converged" : "NOT converged", out.fit.cost, out.fit.iterations,
+                 out.fit.evaluations, out.fit_s);
+    for (size_t i = 0; i < curves.size(); ++i)
+      std::fprintf(stderr, "    %-14s residual %.3g %% of the curve's range\n", test_name(curves[i].test).c_str(),
+                   100 * out.fit.relative_rms[i]);
+  }
+
+  std::filesystem::create_directories(c.out_dir);
+  // curves.csv
+  {
+    CsvTable csv(c.out_dir / "curves.csv",
+                 {"test", "load", "load_unit", "yarn", "fitted", "first_guess", "response_unit"});
+    for (size_t i = 0; i < curves.size(); ++i)
+      for (size_t k = 0; k < curves[i].target.size(); ++k) {
+        const TestKind kind = curves[i].test.kind;
+        const double fg = k < first[i].points.size() ? first[i].points[k].response : NAN;
+        csv.row({test_name(curves[i].test), csv_number(curves[i].test.ladder[k]), load_unit(kind),
+                 csv_number(curves[i].target[k]), csv_number(out.fit.fitted[i][k]), csv_number(fg),
+                 response_unit(kind)});
+      }
+    csv.commit();
+  }
+
+  // 4. Validation on motion.
+  Json validation = Json::array();
+  t0 = Clock::now();
+  std::unique_ptr<CsvTable> vcsv;
+  if (!p.validation_scenes.empty())
+    vcsv = std::make_unique<CsvTable>(c.out_dir / "validation.csv",
+                                      std::vector<std::string>{"scene", "variant", "time_s", "rms_m", "max_m"});
+  for (size_t s = 0; s < p.validation_scenes.size(); ++s) {
+    const Scene& vs = p.validation_scenes[s];
+    const std::string label = c.validate[s].stem().string();
+    const IntegratorOptions iopt = scene_integrator_options(vs);
+    std::vector<CrossingFrame> yarn;
+    RecordOptions rec;
+    rec.progress = c.progress;
+    rec.label = label + " yarn";
+    rec.step_ends = true;
+    rec.on_frame = [&](const Frame& f) {
+      CrossingFrame cf;
+      cf.x = f.points;
+      const DataArray *u = nullptr, *v = nullptr;
+      for (const DataArray& a : f.point_data) {
+        if (a.name == "u") u = &a;
+        if (a.name == "v") v = &a;
+      }
+      for (Eigen::Index n = 0; n < f.points.rows(); ++n) cf.uv.emplace_back(u->values[n], v->values[n]);
+      yarn.push_back(std::move(cf));
+    };
+    if (c.progress) std::fprintf(stderr, "  validation %s: yarn level\n", label.c_str());
+    const RecordedRun yr = run_recorded(vs, "yarn", vs.integrator, iopt, rec);
+    if (yr.result.outcome != Outcome::ok)
+      throw std::runtime_error("validation " + label + ": the yarn-level run ended '" + to_string(yr.result.outcome) +
+                               "': " + yr.result.message);
+    FemMaterial stiff_only = calibrated;
+    stiff_only.areal_density_kg_per_m2 = default_fem_material(vs).areal_density_kg_per_m2;
+    FemMaterial full = calibrated;
+    full.areal_density_kg_per_m2 = matched_areal_density(vs);
+    const std::vector<std::pair<std::string, FemMaterial>> variants{
+        {"first_guess", default_fem_material(vs)}, {"calibrated_stiffness", stiff_only}, {"calibrated", full}};
+    Json entry = Json::object();
+    entry.set("scene", c.validate[s].string());
+    entry.set("scene_hash", text_hash(p.validation_texts[s]));
+    entry.set("resolution", c.resolution.describe());
+    entry.set("frames", static_cast<int>(yarn.size()));
+    entry.set("yarn_cpu_s_per_step", cpu_per_step(yr));
+    // Each side's time error beside the distance (docs/models.md §7.8).
+    if (c.progress) std::fprintf(stderr, "  validation %s: yarn-level time error\n", label.c_str());
+    const TimeErrorEstimate yarn_error = estimate_time_error(vs, "yarn", vs.integrator, iopt, yr);
+    entry.set("yarn_time_error", yarn_error.to_json());
+    Json vars = Json::array();
+    for (const auto& [name, m] : variants) {
+      if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
+      Scene variant_scene = with_material(vs, m, c.border_strip && name != "first_guess");
+      variant_scene.fem.grid_line_bending = c.grid_line_bending && name != "first_guess";
+      const VariantRun vr = run_continuum_variant(name, variant_scene, yarn, iopt, c.progress);
+      const TimeErrorEstimate fem_error = estimate_time_error(variant_scene, "fem", vs.integrator, iopt, vr.run);
+      for (size_t k = 0; k < vr.times.size(); ++k)
+        vcsv->row({label, name, csv_number(vr.times[k]), csv_number(vr.rms[k]), csv_number(vr.max[k])});
+      Json j = Json::object();
+      j.set("variant", name);
+      j.set("outcome", to_string(vr.run.result.outcome));
+      j.set("areal_density_kg_per_m2", m.areal_density_kg_per_m2);
+      j.set("mean_rms_m", mean(vr.rms));
+      j.set("max_rms_m", maximum(vr.rms));
+      j.set("max_m", maximum(vr.max));
+      j.set("cpu_s_per_step", cpu_per_step(vr.run));
+      j.set("step_time_ratio_to_yarn", cpu_per_step(yr) > 0 ? cpu_per_step(vr.run) / cpu_per_step(yr) : NAN);
+      j.set("time_error", fem_error.to_json());
+      const std::string budget = error_budget_verdict(mean(vr.rms), yarn_error, fem_error);
+      j.set("budget", budget);
+      vars.push(std::move(j));
+      if (c.progress)
+        std::fprintf(stderr,
+                     "    %s: RMS distance mean %.3g mm, worst frame %.3g mm, max %.3g mm; time error yarn %.3g mm, "
+                     "continuum %.3g mm (mean RMS): %s\n",
+                     name.c_str(), 1e3 * mean(vr.rms), 1e3 * maximum(vr.rms), 1e3 * maximum(vr.max),
+                     1e3 * yarn_error.mean_rms, 1e3 * fem_error.mean_rms, budget.c_str());
+    }
+    entry.set("variants", std::move(vars));
+    validation.push(std::move(entry));
+  }
+  if (vcsv) vcsv->commit();
+  out.validation_s = seconds_since(t0);
+
+  // params.toml with provenance
+  double worst = 0;
+  for (double r : out.fit.relative_rms) worst = std::max(worst, r);
+  std::ostringstream rms;
+  for (size_t i = 0; i < curves.size(); ++i)
+    rms << (i ? ", " : "") << test_name(curves[i].test) << " " << out.fit.relative_rms[i];
+  write_fem_parameter_file(
+      (c.out_dir / "params.toml").string(), calibrated,
+      {{"source_scene", c.scene_path.string()},
+       {"source_scene_hash", text_hash(p.scene_text)},
+       {"git_revision", git_revision()},
+       {"patch",
+        std::to_string(patch) + " x " + std::to_string(patch) + (p.scene.knit ? " courses x wales (knit)" : "")},
+       {"border_strip", c.border_strip ? "fitted with [fem] border_strip = true: set it in the scene" : "false"},
+       {"grid_line_bending",
+        c.grid_line_bending ? "fitted with [fem] grid_line_bending = true: set it in the scene" : "false"},
+       {"shear_law", shear_law_note(calibrated)},
+       {"residual_rms_relative", rms.str()},
+       {"areal_density", p.scene.knit ? "yarn mass of the knit test patch over its contact grid's area"
+                                      : "total yarn mass of the scene over the crossing grid's area"},
+       {"created", utc_now()}});
+
+  // calibration.json
+  Json j = Json::object();
+  j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
+  j.set("scene_hash", text_hash(p.scene_text));
+  j.set("patch", patch);
+  j.set("cloth", p.scene.knit ? "knit" : "woven");
+  j.set("sliding", c.sliding);
+  j.set("border_strip", c.border_strip);
+  j.set("grid_line_bending", c.grid_line_bending);
+  j.set("shear_knots_rad", Json(calibrated.shear_knots_rad));
+  Json params = Json::array();
+  for (const FittedParameter& fp : out.fit.parameters) {
+    Json e = Json::object();
+    e.set("key", fp.key);
+    e.set("start", fp.start);
+    e.set("value", fp.value);
+    e.set("std_error", fp.std_error);
+    e.set("at_bound", fp.at_bound);
+    e.set("lower", fp.lower);
+    e.set("upper", fp.upper);
+    e.set("weakly_determined", fp.weakly_determined);
+    e.set("start_spread", fp.start_spread);
+    params.push(std::move(e));
+  }
+  Json density = Json::object();
+  density.set("key", "areal_density_kg_per_m2");
+  density.set("start", guess.areal_density_kg_per_m2);
+  density.set("value", calibrated.areal_density_kg_per_m2);
+  density.set("std_error", nullptr);
+  density.set("at_bound", false);
+  density.set(
+      "note",
+      "not fitted: static tests cannot see mass; set so that the continuum carries the yarn level's total mass");
+  params.push(std::move(density));
+  j.set("parameters", std::move(params));
+  Json corr = Json::array();
+  for (const auto& row : out.fit.correlation) corr.push(Json(row));
+  j.set("correlation", std::move(corr));
+  j.set("covariance_note", out.fit.covariance_message.empty()
+                               ? "ceres::Covariance (DENSE_SVD) of log-parameters times the residual variance"
+                               : out.fit.covariance_message);
+  j.set("singular_values", Json(out.fit.singular_values));
+  Json tests = Json::array();
+  for (size_t i = 0; i < curves.size(); ++i) {
+    Json e = Json::object();
+    e.set("test", test_name(curves[i].test));
+    e.set("points", static_cast<int>(curves[i].target.size()));
+    e.set("residual_rms_relative", out.fit.relative_rms[i]);
+    if (p.scene.knit) {  // R(0), and relative to the range of the fit's target R − R(0)
+      e.set("response_at_rest", at_rest[i]);
+      e.set("response_at_rest_relative", at_rest[i] / curve_range(curves[i].target));
+    }
+    e.set("load_unit", load_unit(curves[i].test.kind));
+    e.set("response_unit", response_unit(curves[i].test.kind));
+    tests.push(std::move(e));
+  }
+  j.set("tests", std::move(tests));
+  Json starts = Json::array();
+  for (const StartOutcome& s : out.fit.starts) {
+    Json e = Json::object();
+    e.set("start", Json(s.start));
+    e.set("value", Json(s.value));
+    e.set("cost", s.cost);
+    e.set("iterations", s.iterations);
+    e.set("usable", s.usable);
+    starts.push(std::move(e));
+  }
+  j.set("starts", std::move(starts));
+  j.set("starts_at_best", out.fit.starts_at_best);
+  Json fit = Json::object();
+  fit.set("converged", out.fit.converged);
+  fit.set("message", out.fit.message);
+  fit.set("cost", out.fit.cost);
+  fit.set("iterations", out.fit.iterations);
+  fit.set("curve_evaluations", out.fit.evaluations);
+  fit.set("loss", c.fit.loss);
+  fit.set("residuals", c.fit.residuals);
+  fit.set("seed", static_cast<int>(c.fit.seed));
+  j.set("fit", std::move(fit));
+  Json timing = Json::object();
+  timing.set("yarn_tests_wall_s", out.yarn_tests_s);
+  timing.set("fem_tests_wall_s", out.fem_tests_s);
+  timing.set("fit_wall_s", out.fit_s);
+  timing.set("fit_cpu_s", out.fit.cpu_s);
+  timing.set("validation_wall_s", out.validation_s);
+  j.set("timings", std::move(timing));
+  j.set("validation", std::move(validation));
+  j.set("created", utc_now());
+  add_provenance(j);
+  write_file_atomically(c.out_dir / "calibration.json", j.dump());
+  return out;
+}
+
+}  // namespace wl

@@ -1,0 +1,100 @@
+#include "driver/fidelity_reference.h"
+
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "output/atomic_file.h"
+#include "output/binary_io.h"
+
+namespace wl {
+namespace {
+
+constexpr char kMagic[8] = {'W', 'L', 'F', 'I', 'D', '0', '1', '\0'};
+constexpr const char* kFile = "reference.bin";
+
+void put_row(std::string& out, const FidelityRow& r) {
+  for (const std::string* s : {&r.variant, &r.model, &r.outcome, &r.message, &r.same_as_full, &r.time_error_method})
+    put_string(out, *s);
+  put<std::int64_t>(out, r.dofs);
+  put<std::int64_t>(out, r.steps);
+  for (double x : {r.cpu_s, r.wall_s, r.rms_m, r.worst_frame_rms_m, r.max_m, r.energy_diff_J, r.compared_fraction,
+                   r.time_error_mean_rms_m, r.time_error_worst_frame_rms_m})
+    put(out, x);
+}
+
+bool get_row(std::istream& in, FidelityRow& r) {
+  for (std::string* s : {&r.variant, &r.model, &r.outcome, &r.message, &r.same_as_full, &r.time_error_method})
+    if (!get_string(in, *s)) return false;
+  std::int64_t dofs = 0, steps = 0;
+  if (!get(in, dofs) || !get(in, steps)) return false;
+  r.dofs = static_cast<int>(dofs);
+  r.steps = static_cast<long>(steps);
+  for (double* x : {&r.cpu_s, &r.wall_s, &r.rms_m, &r.worst_frame_rms_m, &r.max_m, &r.energy_diff_J,
+                    &r.compared_fraction, &r.time_error_mean_rms_m, &r.time_error_worst_frame_rms_m})
+    if (!get(in, *x)) return false;
+  return true;
+}
+
+}  // namespace
+
+std::string fidelity_reference_key(const FidelityConfig& c) {
+  std::ostringstream key;
+  key << "weavelab fidelity reference v1\nreference=" << c.reference << "\nresolution=" << c.resolution.describe()
+      << "\n";
+  for (const auto& [k, v] : c.overrides) key << "override " << k << "=" << v << "\n";  // std::map: sorted
+  key << "scene:\n" << c.scene.text;
+  return key.str();
+}
+
+void write_fidelity_reference(const std::filesystem::path& dir, const std::string& key, const FidelityReference& ref) {
+  const ReferenceFrames& f = ref.frames;
+  std::string out(kMagic, sizeof kMagic);
+  put_string(out, key);
+  put_row(out, ref.row);
+  put<std::uint64_t>(out, f.x.size());
+  put<std::uint64_t>(out, static_cast<std::uint64_t>(f.crossings()));
+  for (size_t k = 0; k < f.x.size(); ++k) {
+    out.append(reinterpret_cast<const char*>(f.x[k].data()), sizeof(double) * f.x[k].size());
+    for (const Vec2& uv : f.uv[k]) put(out, uv);
+    put(out, f.energy_change[k]);
+  }
+  std::filesystem::create_directories(dir);
+  write_file_atomically(dir / kFile, out);
+}
+
+FidelityReference read_fidelity_reference(const std::filesystem::path& dir, const std::string& key) {
+  const std::filesystem::path path = dir / kFile;
+  auto fail = [&](const std::string& why) {
+    return std::invalid_argument("--reference-from: " + path.string() + ": " + why);
+  };
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw fail("cannot be read (written by `weavelab fidelity --reference-only --out DIR`)");
+  char magic[8];
+  if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0) throw fail("not a fidelity reference file");
+  std::string stored;
+  if (!get_string(in, stored)) throw fail("truncated");
+  if (stored != key) throw fail("written for another scene, overrides, reference or resolution than this command's");
+  FidelityReference ref;
+  std::uint64_t frames = 0, crossings = 0;
+  if (!get_row(in, ref.row) || !get(in, frames) || !get(in, crossings) || frames > (1u << 24) || crossings > (1u << 24))
+    throw fail("truncated");
+  ReferenceFrames& f = ref.frames;
+  for (std::uint64_t k = 0; k < frames; ++k) {
+    FramePoints x(static_cast<Eigen::Index>(crossings), 3);
+    std::vector<Vec2> uv(crossings);
+    double e = 0;
+    bool ok = static_cast<bool>(in.read(reinterpret_cast<char*>(x.data()), sizeof(double) * x.size()));
+    for (Vec2& p : uv) ok = ok && get(in, p);
+    if (!ok || !get(in, e)) throw fail("truncated");
+    f.x.push_back(std::move(x));
+    f.uv.push_back(std::move(uv));
+    f.energy_change.push_back(e);
+  }
+  if (in.peek() != std::char_traits<char>::eof()) throw fail("trailing bytes: not a fidelity reference file");
+  return ref;
+}
+
+}  // namespace wl

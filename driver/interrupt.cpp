@@ -1,0 +1,47 @@
+#include "driver/interrupt.h"
+
+namespace wl {
+namespace {
+
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void record_signal(int sig) { g_signal = sig; }
+
+// Records the signal; a second one takes the default action.
+struct sigaction recording_action() {
+  struct sigaction sa {};
+  sa.sa_handler = record_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESETHAND | SA_RESTART;
+  return sa;
+}
+
+}  // namespace
+
+void install_interrupt_handlers() {
+  const struct sigaction sa = recording_action();
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  sigaction(SIGPIPE, &ignore, nullptr);
+}
+
+int interrupt_signal() { return g_signal; }
+
+int interrupted_exit_code(int signal) { return 128 + signal; }
+
+InterruptScope::InterruptScope() {
+  g_signal = 0;
+  const struct sigaction sa = recording_action();
+  sigaction(SIGINT, &sa, &host_int_);
+  sigaction(SIGTERM, &sa, &host_term_);
+}
+
+InterruptScope::~InterruptScope() {
+  sigaction(SIGINT, &host_int_, nullptr);
+  sigaction(SIGTERM, &host_term_, nullptr);
+}
+
+}  // namespace wl

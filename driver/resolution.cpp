@@ -1,0 +1,43 @@
+#include "driver/resolution.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace wl {
+
+std::string Resolution::describe() const {
+  if (scene) return "each scene's own integrator and step";
+  char b[96];
+  std::snprintf(b, sizeof b, "sdirk2 under error control, rtol %g, atol %g m", rtol, 1e-3 * rtol);
+  return b;
+}
+
+Resolution parse_resolution(const std::string& option, const std::string& value, double rtol) {
+  if (value != "scene" && value != "controlled")
+    throw std::invalid_argument(option + ": got '" + value + "', expected 'controlled' or 'scene'");
+  if (!(rtol > 0.0) || !(rtol < 1.0) || !std::isfinite(rtol))
+    throw std::invalid_argument("--rtol: got " + std::to_string(rtol) + ", expected a tolerance in (0, 1)");
+  return {value == "scene", rtol};
+}
+
+Scene at_resolution(const Scene& scene, const Resolution& r) {
+  Scene s = scene;
+  if (r.scene) return s;
+  s.integrator = "sdirk2";
+  s.adaptive = true;
+  s.rtol = r.rtol;
+  s.atol = 1e-3 * r.rtol;
+  return s;
+}
+
+IntegratorOptions scene_integrator_options(const Scene& s) {
+  IntegratorOptions o;
+  o.dt = s.dt_s;
+  o.adaptive = s.adaptive;
+  o.rtol = s.rtol;
+  o.atol = s.atol;
+  return o;
+}
+
+}  // namespace wl

@@ -1,0 +1,241 @@
+#include "driver/run.h"
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "driver/interrupt.h"
+#include "driver/run_settings.h"
+#include "driver/run_summary.h"
+#include "output/atomic_file.h"
+#include "output/metrics_csv.h"
+#include "output/pvd_series.h"
+#include "output/run_folder.h"
+#include "output/self_intersection.h"
+#include "models/model_factory.h"
+
+namespace wl {
+namespace {
+
+class Progress {
+ public:
+  Progress(bool enabled, double t_end) : enabled_(enabled), t_end_(t_end), start_(clock::now()), last_(start_) {}
+  void update(double t, long steps, bool force = false) {
+    if (!enabled_) return;
+    const auto now = clock::now();
+    if (!force && std::chrono::duration<double>(now - last_).count() < 2.0) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double frac = t_end_ > 0 ? t / t_end_ : 1.0;
+    const double eta = frac > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
+    std::fprintf(stderr, "  t = %.4g / %.4g s (%3.0f%%), %ld steps, %.1f s elapsed, ETA %.1f s\n", t, t_end_,
+                 100.0 * frac, steps, elapsed, eta);
+  }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  bool enabled_;
+  double t_end_;
+  clock::time_point start_, last_;
+};
+
+// The files a run writes (and a rerun into the same folder replaces), with
+// their temporary names: run.pvd, frames/run_NNNNN.vtu, with obstacles
+// obstacles.pvd, frames/obstacles_NNNNN.vtu and self_intersections.csv(.part),
+// metrics.csv(.part), summary.json.
+bool written_by_a_run(const std::filesystem::path& rel) {
+  const std::string name = rel.filename().string();
+  const std::string base = name.substr(0, name.find(".tmp-"));
+  if (rel.parent_path() == "frames")
+    return (base.starts_with("run_") || base.starts_with("obstacles_")) && base.ends_with(".vtu");
+  if (!rel.parent_path().empty()) return false;
+  return base == "run.pvd" || base == "obstacles.pvd" || base == "metrics.csv" || base == "metrics.csv.part" ||
+         base == "self_intersections.csv" || base == "self_intersections.csv.part" || base == "summary.json";
+}
+
+// Thrown from the step callback to end the run after the step a signal arrived in.
+struct Interrupted {};
+
+StepResult interrupted_result() {
+  const int sig = interrupt_signal();
+  return {Outcome::interrupted, std::string("interrupted by ") + (sig == SIGINT    ? "SIGINT"
+                                                                  : sig == SIGTERM ? "SIGTERM"
+                                                                                   : "a signal")};
+}
+
+// The force at (q, 0): an equilibrium has none on a free DoF (the velocity
+// terms, friction's damping among them, are left out; its anchors are not).
+SettledBalance settled_balance(const Scene& scene, Model& model, double t, const Vec& q, const Vec& v) {
+  Evaluation ev;
+  allocate_evaluation(model, ev);
+  model.evaluate(t, q, Vec::Zero(v.size()), kForce | kMass, ev);
+  Vec free_force = ev.force;
+  for (int i : model.fixed_dofs()) free_force[i] = 0.0;
+  const auto& g = scene.gravity_m_per_s2;
+  SettledBalance b;
+  b.max_force_N = free_force.lpNorm<Eigen::Infinity>();
+  b.heaviest_weight_N = Vec(ev.mass.diagonal()).maxCoeff() * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  b.kinetic_J = 0.5 * v.dot(ev.mass * v);
+  return b;
+}
+
+}  // namespace
+
+RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
+  check_run_memory(scene_in, options.model);
+  std::optional<AccuracyChoice> accuracy;
+  Scene scene = scene_in;
+  if (scene.accuracy_m > 0.0) {
+    (void)make_model(scene, options.model);  // a model the scene cannot build fails before the trials
+    if (options.progress)
+      std::fprintf(stderr, "weavelab: choosing the integrator and tolerance for a time error of %g m\n",
+                   scene.accuracy_m);
+    accuracy = choose_for_accuracy(scene, options.model, scene.accuracy_m, options.progress);
+    scene.integrator = accuracy->integrator;
+    scene.adaptive = true;
+    scene.rtol = accuracy->rtol;
+    scene.atol = accuracy->atol;
+    scene.error_estimate = false;  // the chosen trial's estimate is this run's (the same steps)
+  }
+  auto model = make_model(scene, options.model);
+  check_linear_solver(scene, *model, options.overrides);
+  auto integrator = make_integrator(scene.integrator);
+  IntegratorOptions iopt;
+  iopt.linear_solver = parse_linear_solver(scene.linear_solver);
+  iopt.dt = scene.dt_s;
+  iopt.adaptive = scene.adaptive;
+  iopt.rtol = scene.rtol;
+  iopt.atol = scene.atol;
+
+  const bool writes = !options.out_dir.empty();
+  std::optional<RunFolder> folder;
+  std::optional<PvdSeries> series;
+  std::optional<MetricsCsv> metrics;
+  if (writes) {
+    folder.emplace(options.out_dir, written_by_a_run);
+    series.emplace(options.out_dir, "run");
+    metrics.emplace(options.out_dir / "metrics.csv",
+                    std::vector<std::string>{"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters",
+                                             "step_wall_s"});
+  }
+  // The rigid obstacles, a second series beside the cloth's (docs/models.md §3.11.5).
+  // With them, the cloth's self-intersecting triangle pairs per frame (CGAL, docs/models.md §3.11.7).
+  std::optional<PvdSeries> obstacle_series;
+  std::optional<MetricsCsv> intersections;
+  if (writes && model->obstacle_frame(0.0).points.rows() > 0) {
+    obstacle_series.emplace(options.out_dir, "obstacles");
+    intersections.emplace(options.out_dir / "self_intersections.csv",
+                          std::vector<std::string>{"time_s", "intersecting_triangle_pairs"});
+  }
+  if (options.progress)
+    std::fprintf(stderr, "weavelab: %s model, %d DoFs, %s, dt = %g s, %g s simulated -> %s\n", model->name().c_str(),
+                 model->num_dofs(), scene.integrator.c_str(), scene.dt_s, scene.duration_s,
+                 options.out_dir.string().c_str());
+
+  Progress progress(options.progress, scene.duration_s);
+  RecordedRun record;  // what the time error estimate needs: step ends and node positions at the frames
+  auto keep_frame = [&](const Frame& f) {
+    if (!scene.error_estimate || f.time == 0.0) return;
+    const Eigen::Index rows = static_cast<Eigen::Index>(f.points.size());
+    record.trajectory.positions.conservativeResize(rows, record.trajectory.positions.cols() + 1);
+    record.trajectory.positions.col(record.trajectory.positions.cols() - 1) =
+        Eigen::Map<const Eigen::VectorXd>(f.points.data(), rows);
+    record.trajectory.times.push_back(f.time);
+  };
+  auto add_frame = [&](Frame f) {
+    keep_frame(f);
+    if (series) series->add(f);
+    if (options.on_frame) options.on_frame(f);
+    if (obstacle_series) obstacle_series->add(model->obstacle_frame(f.time));
+    if (intersections) intersections->row({f.time, double(count_self_intersections(f))});
+  };
+  integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
+  Evaluation scratch;
+  auto metrics_row = [&](double t, int iters, double wall) {
+    if (!metrics) return;
+    const Vec& q = integrator->q();
+    const Vec& v = integrator->v();
+    metrics->row({t, model->kinetic_energy(t, q, v, scratch), model->potential_energy(q), model->max_node_speed(v),
+                  double(iters), wall});
+  };
+  integrator->on_step = [&](const StepRecord& r) {
+    metrics_row(r.t, r.nonlinear_iters, r.wall_s);
+    if (scene.error_estimate) record.step_ends.push_back(r.t);
+    progress.update(r.t, integrator->stats().steps);
+    if (interrupt_signal()) throw Interrupted{};
+  };
+
+  RunReport rep;
+  metrics_row(0.0, 0, 0.0);
+  add_frame(model->frame(0.0, integrator->q(), integrator->v()));
+  rep.frames = 1;
+  const int outputs = static_cast<int>(std::llround(scene.duration_s / scene.output_interval_s));
+  // The settling phase: steps of settle_dt_s from settle_after_s on.
+  bool settling = false;
+  auto advance = [&](double t_out) {
+    if (interrupt_signal()) return interrupted_result();
+    try {
+      if (scene.settle_dt_s > 0.0 && !settling && t_out > scene.settle_after_s) {
+        if (integrator->t() < scene.settle_after_s) {
+          const StepResult r = integrator->advance_to(scene.settle_after_s);
+          if (r.outcome != Outcome::ok) return r;
+        }
+        integrator->set_fixed_step(scene.settle_dt_s);
+        settling = true;
+      }
+      return integrator->advance_to(t_out);
+    } catch (const Interrupted&) {
+      return interrupted_result();
+    }
+  };
+  for (int k = 1; k <= outputs; ++k) {
+    const double t_out = std::min(scene.duration_s, k * scene.output_interval_s);
+    rep.result = advance(t_out);
+    if (rep.result.outcome != Outcome::ok) break;
+    add_frame(model->frame(integrator->t(), integrator->q(), integrator->v()));
+    ++rep.frames;
+  }
+  if (rep.result.outcome == Outcome::ok && integrator->t() < scene.duration_s - 1e-12) {
+    rep.result = advance(scene.duration_s);
+    if (rep.result.outcome == Outcome::ok) {
+      add_frame(model->frame(integrator->t(), integrator->q(), integrator->v()));
+      ++rep.frames;
+    }
+  }
+  progress.update(integrator->t(), integrator->stats().steps, true);
+  if (metrics) metrics->commit();
+  if (intersections) intersections->commit();
+  rep.stats = integrator->stats();
+  rep.end_time = integrator->t();
+  if (scene.settle_dt_s > 0.0 && rep.result.outcome == Outcome::ok)
+    rep.settled = settled_balance(scene, *model, integrator->t(), integrator->q(), integrator->v());
+  rep.accuracy = std::move(accuracy);
+  if (rep.accuracy) rep.time_error = rep.accuracy->estimate;
+  if (scene.error_estimate && rep.result.outcome == Outcome::ok) {
+    if (options.progress) std::fprintf(stderr, "weavelab: estimating the time error (a second run)\n");
+    record.stats = rep.stats;
+    try {
+      rep.time_error = estimate_time_error(scene, options.model, scene.integrator, iopt, record, options.progress);
+    } catch (const Interrupted&) {
+      rep.result = interrupted_result();
+    }
+  }
+  if (rep.time_error && options.progress) {
+    if (rep.time_error->ok())
+      std::fprintf(stderr, "weavelab: time error (%s): mean RMS %.3g m, max %.3g m\n", rep.time_error->method.c_str(),
+                   rep.time_error->mean_rms, rep.time_error->max_max);
+    else
+      std::fprintf(stderr, "weavelab: no time error estimate: the second run ended %s: %s\n",
+                   to_string(rep.time_error->second_run.outcome), rep.time_error->second_run.message.c_str());
+  }
+  rep.summary_json = run_summary_json(scene, options, *model, *integrator, rep);
+  if (writes) write_file_atomically(options.out_dir / "summary.json", rep.summary_json);
+  return rep;
+}
+
+}  // namespace wl

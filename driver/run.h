@@ -1,0 +1,54 @@
+// Runs one scene with one model and integrator, writing the frames (PVD/VTU),
+// the metrics CSV and the run summary JSON into an output folder, with
+// progress on stderr. A numerical failure ends the run with its outcome in the
+// summary; it is not an exception.
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "driver/accuracy.h"
+#include "driver/time_error.h"
+#include "integrators/integrator.h"
+#include "models/scene/scene.h"
+
+namespace wl {
+
+struct RunOptions {
+  std::string model = "yarn";
+  std::filesystem::path out_dir;  // empty: a run in memory, nothing written (RunReport::summary_json only)
+  bool progress = true;
+  std::map<std::string, std::string> overrides;  // command-line values that replaced scene values
+  // Called with every output frame, t = 0 included, as it is written.
+  std::function<void(const Frame&)> on_frame;
+};
+
+// The end state of a run with a settling phase (time.settle_dt_s): how far it
+// is from an equilibrium: the largest generalized force on a free DoF at the
+// final (t, q) at rest (v = 0), against the largest diagonal entry of M(q)
+// times ‖g‖ (a node's weight), and the kinetic energy at the final v.
+struct SettledBalance {
+  double max_force_N = 0.0, heaviest_weight_N = 0.0, kinetic_J = 0.0;
+};
+
+struct RunReport {
+  StepResult result;
+  IntegratorStats stats;
+  int frames = 0;
+  double end_time = 0.0;
+  // Scene key time.error_estimate (--error-estimate): the estimate after a run that ended ok.
+  std::optional<TimeErrorEstimate> time_error;
+  // Scene key time.accuracy_m (--accuracy): the choice made before the run.
+  std::optional<AccuracyChoice> accuracy;
+  std::optional<SettledBalance> settled;  // time.settle_dt_s set and the run ended ok
+  std::string summary_json;               // the text of summary.json
+};
+
+// The frames, metrics.csv and summary.json go to options.out_dir (README,
+// "Using it"). With time.accuracy_m set, the integrator and tolerance are chosen first
+// (choose_for_accuracy, runs in memory) and the written run uses them.
+RunReport run_scene(const Scene& scene, const RunOptions& options);
+
+}  // namespace wl
