@@ -16,7 +16,7 @@
 # hash, the options and the program, so a rerun only runs what changed.
 # WL_OPTIONS adds options of `weavelab fidelity` (e.g. WL_OPTIONS="--tolerance
 # 0.0008"); extra arguments go to snakemake (e.g. --cores 1, or --profile
-# experiments/profiles/cluster).
+# experiments/common/profiles/cluster).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh >/dev/null

@@ -7,7 +7,7 @@
 # one job per cell, locally on every core, cached by the scene's hash, so a
 # rerun only runs what changed. WL_SCENE and WL_OUT change the scene and
 # folder, WL_OPTIONS adds options of `weavelab stability` (e.g. "--bisections 6");
-# extra arguments go to snakemake (e.g. --profile experiments/profiles/cluster).
+# extra arguments go to snakemake (e.g. --profile experiments/common/profiles/cluster).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh >/dev/null

@@ -13,7 +13,7 @@
 # only runs what changed. WL_SCENE and WL_OUT change the scene and folder,
 # WL_OPTIONS replaces the options of `weavelab work-precision` below (e.g. WL_SCENE=
 # experiments/scenes/work_precision_17.toml WL_OPTIONS=" " WL_INTEGRATORS=be-linear,sdirk2,ida,symplectic);
-# extra arguments go to snakemake (e.g. --profile experiments/profiles/cluster).
+# extra arguments go to snakemake (e.g. --profile experiments/common/profiles/cluster).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/setup.sh >/dev/null

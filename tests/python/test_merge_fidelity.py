@@ -1,4 +1,4 @@
-"""The fidelity workflow's merge (experiments/workflows/merge_fidelity.py): the
+"""The fidelity workflow's merge (experiments/common/merge_fidelity.py): the
 rows of separate jobs become the files one `weavelab fidelity` run writes, the
 Pareto front and the cheapest rung within each tolerance computed again by the
 rules of one run; and a ladder run as jobs through the command line gives the

@@ -1,4 +1,4 @@
-"""The sweeps' merge step (experiments/workflows/merge_parts.py): the parts of a
+"""The sweeps' merge step (experiments/common/merge_parts.py): the parts of a
 sweep become the folder one run of the command would have written."""
 import csv
 import json

@@ -5,7 +5,7 @@ JSON summaries as one: its parameter lists the union over the parts, its
 objects keyed by model and its notes joined, its counts and wall times the
 sums, each part's summary kept under "parts".
 
-    /usr/bin/python3 experiments/workflows/merge_parts.py OUT NAME PART_DIR...
+    /usr/bin/python3 experiments/common/merge_parts.py OUT NAME PART_DIR...
 
 NAME is the experiment's file stem (stability, work_precision). Files are
 written under a temporary name and renamed.

@@ -7,7 +7,7 @@ Pareto front of (CPU time, worst-frame RMS distance) among the complete rows,
 and the cheapest rung within each tolerance whose own time error is within it
 too, with its speed-up over the reference.
 
-    /usr/bin/python3 experiments/workflows/merge_fidelity.py OUT REFERENCE_DIR RUNG_DIR...
+    /usr/bin/python3 experiments/common/merge_fidelity.py OUT REFERENCE_DIR RUNG_DIR...
 
 Files are written under a temporary name and renamed. A missing or malformed
 job folder: a message naming it and exit 2, nothing written.
