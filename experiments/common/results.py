@@ -212,3 +212,44 @@ def read_index_entry(results_path):
     if not first.startswith(MARKER):
         return None
     return json.loads(first[len(MARKER):].rsplit("-->", 1)[0])
+
+
+def write_pending(path, study, title, command, reason, earlier_figures=()):
+    """Writes a RESULTS.md that says the study has not been run at this
+    revision, why (e.g. its cost), and the one command that runs it. Figures
+    left from an earlier revision are shown with that revision named, so that
+    nothing passes for a result of this one."""
+    folder = os.path.dirname(os.path.abspath(path))
+    meta = provenance()
+    index = {"study": study, "title": title, "revision": meta["revision"], "date": meta["date"],
+             "headline": "not yet run at this revision", "figure": None, "pending": True}
+    out = [f"# {title}\n",
+           "Written by this study's workflow: do not edit; rerun it instead.\n",
+           f"**Not yet run at revision `{meta['revision']}`** ({meta['date']}): {reason}\n",
+           "Run it from the repository root with:\n", "```", command, "```", ""]
+    about = os.path.join(folder, "about.md")
+    if os.path.isfile(about):
+        with open(about, encoding="utf-8") as f:
+            out += [f.read().strip(), ""]
+    for figure in earlier_figures:
+        revision = git("log", "-1", "--format=%h", "--", figure) or "unknown"
+        out.append(f"![{os.path.basename(figure)}]({os.path.relpath(figure, folder)})\n")
+        out.append(f"Figure from revision `{revision}`, before this study became a workflow.\n")
+    text = MARKER + json.dumps(index, ensure_ascii=False) + " -->\n" + "\n".join(out)
+    with open(path + ".tmp", "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(path + ".tmp", path)
+
+
+if __name__ == "__main__":
+    import argparse
+
+    parser = argparse.ArgumentParser(description="Write a study's RESULTS.md that says it is not yet run at this revision.")
+    parser.add_argument("results", help="experiments/<study>/RESULTS.md")
+    parser.add_argument("--study", required=True)
+    parser.add_argument("--title", required=True)
+    parser.add_argument("--command", required=True, help="the command that runs the study")
+    parser.add_argument("--reason", required=True, help="why it was not run (e.g. its cost)")
+    parser.add_argument("--figure", action="append", default=[], help="a figure of an earlier revision")
+    args = parser.parse_args()
+    write_pending(args.results, args.study, args.title, args.command, args.reason, args.figure)
