@@ -59,6 +59,12 @@ HIT = re.compile(
 )
 
 
+def bad_input(message):
+    """Exit 2 with the message on stderr (the project's code for bad input)."""
+    print(f"check_numbers: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
 def read_allow_list(path):
     """Entries (text, reason) of the allow-list; exit 2 on a malformed line."""
     entries = []
@@ -69,7 +75,7 @@ def read_allow_list(path):
                 continue
             text, sep, reason = line.partition(" :: ")
             if not sep or not text.strip() or not reason.strip():
-                sys.exit(f"{path}:{number}: expected 'TEXT :: REASON', got {line!r}")
+                bad_input(f"{path}:{number}: expected 'TEXT :: REASON', got {line!r}")
             entries.append((text.strip(), reason.strip()))
     return entries
 
@@ -130,14 +136,14 @@ def main(argv):
     root = os.path.abspath(args.root)
     allow_path = args.allow or os.path.join(root, "tools", "check_numbers_allow.txt")
     if not os.path.isfile(allow_path):
-        sys.exit(f"check_numbers: allow-list {allow_path}: no such file")
+        bad_input(f"allow-list {allow_path}: no such file")
     entries = read_allow_list(allow_path)
     files = args.files or default_files(root)
     used = set()
     problems = []
     for path in files:
         if not os.path.isfile(path):
-            sys.exit(f"check_numbers: {path}: no such file")
+            bad_input(f"{path}: no such file")
         problems += scan(path, os.path.relpath(os.path.abspath(path), root), entries, used)
     if not args.files:
         for index, (text, _) in enumerate(entries):
