@@ -87,18 +87,17 @@ def write_index(index_path, entries):
     write_atomically(index_path, text)
 
 
-def update_readme(readme_path, entries):
-    """Rewrites the block between the markers; False when the README has none."""
+def readme_with_index(readme_path, entries):
+    """The README's text with the block between the markers replaced; None when it has no markers."""
     with open(readme_path, encoding="utf-8") as f:
         text = f.read()
     start, end = text.find(START), text.find(END)
     if start < 0 and end < 0:
-        return False
+        return None
     if start < 0 or end < start:
         fail(f"{readme_path}: expected '{START}' before '{END}'")
     block = START + "\n" + table(entries, os.path.dirname(os.path.abspath(readme_path))) + END
-    write_atomically(readme_path, text[:start] + block + text[end + len(END):])
-    return True
+    return text[:start] + block + text[end + len(END):]
 
 
 def main(argv=None):
@@ -110,9 +109,10 @@ def main(argv=None):
     entries = [read_entry(p) for p in args.results]
     if args.readme and not os.path.isfile(args.readme):
         fail(f"--readme: no file '{args.readme}'")
+    readme = readme_with_index(args.readme, entries) if args.readme else None  # checked before writing
     write_index(args.index, entries)
-    if args.readme:
-        update_readme(args.readme, entries)
+    if readme is not None:
+        write_atomically(args.readme, readme)
 
 
 if __name__ == "__main__":
