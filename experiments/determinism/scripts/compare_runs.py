@@ -53,6 +53,19 @@ def compare(reference, folder):
     return len(names) + 1, differing
 
 
+def summary(rows):
+    """Counts of the reruns bitwise identical to the first, in all and per OpenBLAS setting, and a sentence."""
+    reruns = rows[1:]
+    groups = {}
+    for r in reruns:
+        groups.setdefault(r["OPENBLAS_NUM_THREADS"], []).append(r["files_differing"] == 0)
+    parts = [f"{sum(same)} of {len(same)} with OPENBLAS_NUM_THREADS "
+             + ("unset" if blas == "default" else f"= {blas}") for blas, same in groups.items()]
+    identical = sum(1 for r in reruns if r["files_differing"] == 0)
+    return {"runs": len(rows), "reruns": len(reruns), "identical_reruns": identical,
+            "summary": f"{identical} of {len(reruns)} reruns bitwise identical to the first: " + ", ".join(parts)}
+
+
 def main(argv):
     if len(argv) < 4 or any("=" not in a for a in argv[2:]):
         fail("usage: compare_runs.py OUT_CSV SUMMARY_CSV SETTING=RUN_DIR...")
@@ -68,9 +81,7 @@ def main(argv):
             verdict = "bitwise identical" if differing == 0 else f"{differing} files differ"
         rows.append({"run": k, "OMP_NUM_THREADS": omp, "OPENBLAS_NUM_THREADS": blas, "files_compared": compared,
                      "files_differing": differing, "verdict": verdict})
-    for path, table in ((argv[0], rows),
-                        (argv[1], [{"runs": len(rows), "reruns": len(rows) - 1,
-                                    "identical_reruns": sum(1 for r in rows[1:] if r["files_differing"] == 0)}])):
+    for path, table in ((argv[0], rows), (argv[1], [summary(rows)])):
         with open(path + ".tmp", "w", newline="", encoding="utf-8") as f:
             w = csv.DictWriter(f, fieldnames=list(table[0]), lineterminator="\n")
             w.writeheader()
