@@ -240,7 +240,8 @@ def write_pending(path, study, title, command, reason, earlier_figures=()):
         with open(about, encoding="utf-8") as f:
             out += [f.read().strip(), ""]
     for figure in earlier_figures:
-        revision = git("log", "-1", "--format=%h", "--", figure) or "unknown"
+        # the last commit that changed the picture, not one that only moved it
+        revision = git("log", "-1", "--follow", "--diff-filter=AM", "--format=%h", "--", figure) or "unknown"
         out.append(f"![{os.path.basename(figure)}]({os.path.relpath(figure, folder)})\n")
         out.append(f"Figure from revision `{revision}`, before this study became a workflow.\n")
     text = MARKER + json.dumps(index, ensure_ascii=False) + " -->\n" + "\n".join(out)
