@@ -145,9 +145,26 @@ COMMAND_VARIABLE = "WEAVELAB_WORKFLOW_COMMAND"
 os.environ.setdefault(COMMAND_VARIABLE, " ".join([os.path.basename(sys.argv[0]), *sys.argv[1:]]) if sys.argv else "")
 
 
-def provenance():
+def revision(own=()):
+    """The commit, with "-dirty" when a tracked file differs from it; the files
+    in `own` (the RESULTS.md being rewritten and its figures, which Snakemake
+    removes before the rule runs) do not count."""
+    commit = git("describe", "--always", "--abbrev=12")
+    changed = git("status", "--porcelain", "--untracked-files=no")
+    if commit == "unknown" or changed == "unknown":
+        return commit
+    top = git("rev-parse", "--show-toplevel")
+    mine = [os.path.abspath(p) for p in own]
+    for line in changed.splitlines():
+        path = os.path.abspath(os.path.join(top, line[3:].split(" -> ")[-1].strip('"')))
+        if not any(path == m or path.startswith(m + os.sep) for m in mine):
+            return commit + "-dirty"
+    return commit
+
+
+def provenance(own=()):
     return {
-        "revision": git("describe", "--always", "--dirty", "--abbrev=12"),
+        "revision": revision(own),
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "machine": machine(),
         "command": os.environ[COMMAND_VARIABLE],
@@ -173,7 +190,7 @@ def write_results(path, study, title, sections, commands, benchmarks=(), headlin
     `about` defaults to about.md beside `path`."""
     folder = os.path.dirname(os.path.abspath(path))
     about = about or os.path.join(folder, "about.md")
-    meta = provenance()
+    meta = provenance(own=[path, os.path.join(folder, "figures")])
     figures = os.path.join(folder, "figures")
     index = {"study": study, "title": title, "revision": meta["revision"], "date": meta["date"],
              "headline": None, "figure": None}
@@ -228,7 +245,7 @@ def write_pending(path, study, title, command, reason, earlier_figures=()):
     left from an earlier revision are shown with that revision named, so that
     nothing passes for a result of this one."""
     folder = os.path.dirname(os.path.abspath(path))
-    meta = provenance()
+    meta = provenance(own=[path])
     index = {"study": study, "title": title, "revision": meta["revision"], "date": meta["date"],
              "headline": "not yet run at this revision", "figure": None, "pending": True}
     out = [f"# {title}\n",
