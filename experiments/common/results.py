@@ -156,7 +156,8 @@ def revision(own=()):
     top = git("rev-parse", "--show-toplevel")
     mine = [os.path.abspath(p) for p in own]
     for line in changed.splitlines():
-        path = os.path.abspath(os.path.join(top, line[3:].split(" -> ")[-1].strip('"')))
+        name = line.split(maxsplit=1)[1].split(" -> ")[-1].strip('"')  # "XY path" or "R  old -> new"
+        path = os.path.abspath(os.path.join(top, name))
         if not any(path == m or path.startswith(m + os.sep) for m in mine):
             return commit + "-dirty"
     return commit
