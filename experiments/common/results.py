@@ -137,12 +137,38 @@ def machine():
     return f"{os.cpu_count()} cores ({cpu}), {memory_gb:.0f} GiB, load average {load} (1, 5, 15 min) when written"
 
 
-def provenance():
+# The command line the user typed. Snakemake runs a `run:` block in a process
+# of its own whose arguments are internal; this module is first imported while
+# the user's snakemake reads the Snakefile, so the command is kept in the
+# environment then, which the job processes inherit.
+COMMAND_VARIABLE = "WEAVELAB_WORKFLOW_COMMAND"
+os.environ.setdefault(COMMAND_VARIABLE, " ".join([os.path.basename(sys.argv[0]), *sys.argv[1:]]) if sys.argv else "")
+
+
+def revision(own=()):
+    """The commit, with "-dirty" when a tracked file differs from it; the files
+    in `own` (the RESULTS.md being rewritten and its figures, which Snakemake
+    removes before the rule runs) do not count."""
+    commit = git("describe", "--always", "--abbrev=12")
+    changed = git("status", "--porcelain", "--untracked-files=no")
+    if commit == "unknown" or changed == "unknown":
+        return commit
+    top = git("rev-parse", "--show-toplevel")
+    mine = [os.path.abspath(p) for p in own]
+    for line in changed.splitlines():
+        name = line.split(maxsplit=1)[1].split(" -> ")[-1].strip('"')  # "XY path" or "R  old -> new"
+        path = os.path.abspath(os.path.join(top, name))
+        if not any(path == m or path.startswith(m + os.sep) for m in mine):
+            return commit + "-dirty"
+    return commit
+
+
+def provenance(own=()):
     return {
-        "revision": git("describe", "--always", "--dirty", "--abbrev=12"),
+        "revision": revision(own),
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "machine": machine(),
-        "command": " ".join(["snakemake", *sys.argv[1:]]) if "snakemake" in sys.argv[0] else " ".join(sys.argv),
+        "command": os.environ[COMMAND_VARIABLE],
     }
 
 
@@ -165,7 +191,7 @@ def write_results(path, study, title, sections, commands, benchmarks=(), headlin
     `about` defaults to about.md beside `path`."""
     folder = os.path.dirname(os.path.abspath(path))
     about = about or os.path.join(folder, "about.md")
-    meta = provenance()
+    meta = provenance(own=[path, os.path.join(folder, "figures")])
     figures = os.path.join(folder, "figures")
     index = {"study": study, "title": title, "revision": meta["revision"], "date": meta["date"],
              "headline": None, "figure": None}
@@ -220,7 +246,7 @@ def write_pending(path, study, title, command, reason, earlier_figures=()):
     left from an earlier revision are shown with that revision named, so that
     nothing passes for a result of this one."""
     folder = os.path.dirname(os.path.abspath(path))
-    meta = provenance()
+    meta = provenance(own=[path])
     index = {"study": study, "title": title, "revision": meta["revision"], "date": meta["date"],
              "headline": "not yet run at this revision", "figure": None, "pending": True}
     out = [f"# {title}\n",
@@ -232,7 +258,8 @@ def write_pending(path, study, title, command, reason, earlier_figures=()):
         with open(about, encoding="utf-8") as f:
             out += [f.read().strip(), ""]
     for figure in earlier_figures:
-        revision = git("log", "-1", "--format=%h", "--", figure) or "unknown"
+        # the last commit that changed the picture, not one that only moved it
+        revision = git("log", "-1", "--follow", "--diff-filter=AM", "--format=%h", "--", figure) or "unknown"
         out.append(f"![{os.path.basename(figure)}]({os.path.relpath(figure, folder)})\n")
         out.append(f"Figure from revision `{revision}`, before this study became a workflow.\n")
     text = MARKER + json.dumps(index, ensure_ascii=False) + " -->\n" + "\n".join(out)
