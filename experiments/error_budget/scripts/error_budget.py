@@ -17,9 +17,7 @@ import sys
 
 import numpy as np
 
-EXPERIMENTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
-sys.path.insert(0, os.path.join(EXPERIMENTS, "common"))
-sys.path.insert(0, EXPERIMENTS)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common"))
 import compare  # noqa: E402
 import runs as wio  # noqa: E402
 
