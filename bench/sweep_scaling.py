@@ -10,7 +10,7 @@ the jobs over K, never less than the longest job).
     bench/sweep_scaling.py [--workers 2] [--estimate 16] [--ladder error-budget|models]
 
 Ladders on the 17×17 hanging cloth, 0.05 s: error-budget, the serial loop of
-the error_budget study (experiments/error_budget: integrators and steps); models, yarn and FEM under
+experiments/error_budget.sh (integrators and steps); models, yarn and FEM under
 be-linear, be-newton and sdirk2. Each job runs on one thread (OMP_NUM_THREADS=1,
 OPENBLAS_NUM_THREADS=1): one process per core. Exit 1 when the passes differ.
 """
