@@ -137,12 +137,20 @@ def machine():
     return f"{os.cpu_count()} cores ({cpu}), {memory_gb:.0f} GiB, load average {load} (1, 5, 15 min) when written"
 
 
+# The command line the user typed. Snakemake runs a `run:` block in a process
+# of its own whose arguments are internal; this module is first imported while
+# the user's snakemake reads the Snakefile, so the command is kept in the
+# environment then, which the job processes inherit.
+COMMAND_VARIABLE = "WEAVELAB_WORKFLOW_COMMAND"
+os.environ.setdefault(COMMAND_VARIABLE, " ".join([os.path.basename(sys.argv[0]), *sys.argv[1:]]) if sys.argv else "")
+
+
 def provenance():
     return {
         "revision": git("describe", "--always", "--dirty", "--abbrev=12"),
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "machine": machine(),
-        "command": " ".join(["snakemake", *sys.argv[1:]]) if "snakemake" in sys.argv[0] else " ".join(sys.argv),
+        "command": os.environ[COMMAND_VARIABLE],
     }
 
 

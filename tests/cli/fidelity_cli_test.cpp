@@ -104,7 +104,7 @@ TEST_F(FidelityCli, WritesTheLadderAndNamesTheCheapestVariant) {
        {"\"resolution\": \"sdirk2 under error control, rtol 0.0001", "\"time_error\"", "\"method\": \"richardson\""})
     EXPECT_NE(json.str().find(field), std::string::npos) << field;
   const Result plot = wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
-                                            "/experiments/plot_fidelity.py' '" + out().string() + "'");
+                                            "/experiments/fidelity/scripts/plot_fidelity.py' '" + out().string() + "'");
   EXPECT_EQ(plot.exit_code, 0) << plot.output;
   EXPECT_GT(fs::file_size(out() / "fidelity.png"), 1000u);
   EXPECT_GT(fs::file_size(out() / "fidelity.svg"), 1000u);

@@ -1,6 +1,6 @@
 // FEM and yarn runs of the same scene produce frames that the comparison can
 // pair (docs/design.md §7.4). Runs the CLI twice (yarn and fem, be-linear, 20 ms of
-// the hanging cloth) and experiments/compare.py on the two run folders.
+// the hanging cloth) and experiments/common/compare.py on the two run folders.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -44,7 +44,7 @@ TEST(ModelComparison, YarnAndFemRunsOfOneScenePairFrameByFrame) {
   ASSERT_EQ(pvd_frames(fem), frames);
 
   r = wl::test::run_command(std::string(wl::test::python()) + " " +
-                            shell_quote(std::string(WEAVELAB_SOURCE_DIR) + "/experiments/compare.py") + " " +
+                            shell_quote(std::string(WEAVELAB_SOURCE_DIR) + "/experiments/common/compare.py") + " " +
                             shell_quote(yarn.string()) + " " + shell_quote(fem.string()) + " --out " +
                             shell_quote(csv.string()) + " --table");
   ASSERT_EQ(r.exit_code, 0) << r.output;

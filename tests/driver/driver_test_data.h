@@ -60,9 +60,10 @@ inline std::vector<std::vector<std::string>> read_csv(const std::filesystem::pat
   return rows;
 }
 
-// Runs the chart script experiments/<script> on a result folder.
+// Runs a chart script on a result folder; `script` is its path in the repository
+// (e.g. experiments/stability/scripts/plot_stability.py).
 inline CommandResult run_chart_script(const std::string& script, const std::filesystem::path& folder) {
-  const std::string path = std::string(WEAVELAB_SOURCE_DIR) + "/experiments/" + script;
+  const std::string path = std::string(WEAVELAB_SOURCE_DIR) + "/" + script;
   return run_command(std::string(python()) + " " + shell_quote(path) + " " + shell_quote(folder.string()));
 }
 

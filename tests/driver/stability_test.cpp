@@ -44,7 +44,7 @@ TEST(StabilitySweep, TinySceneExplicitLimitBelowImplicit) {
   EXPECT_NE(json.find("\"speed_bound_m_per_s\""), std::string::npos);
 
   ASSERT_TRUE(test::python_with("numpy, matplotlib"));
-  const auto out = test::run_chart_script("plot_stability.py", c.out_dir);
+  const auto out = test::run_chart_script("experiments/stability/scripts/plot_stability.py", c.out_dir);
   ASSERT_EQ(out.exit_code, 0) << out.output;
   EXPECT_TRUE(std::filesystem::exists(c.out_dir / "stability.png"));
   EXPECT_TRUE(std::filesystem::exists(c.out_dir / "stability.svg"));

@@ -60,7 +60,7 @@ TEST(WorkPrecisionSweep, TinySceneTwoIntegratorsEndToEnd) {
 
   // The chart script reads these files.
   ASSERT_TRUE(test::python_with("numpy, matplotlib"));
-  const auto out = test::run_chart_script("plot_work_precision.py", c.out_dir);
+  const auto out = test::run_chart_script("experiments/work_precision/scripts/plot_work_precision.py", c.out_dir);
   ASSERT_EQ(out.exit_code, 0) << out.output;
   EXPECT_TRUE(std::filesystem::exists(c.out_dir / "work_precision.png"));
   EXPECT_TRUE(std::filesystem::exists(c.out_dir / "work_precision.svg"));

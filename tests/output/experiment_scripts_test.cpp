@@ -107,7 +107,7 @@ struct Runs {
   }
 };
 
-std::string script(const char* name) { return std::string(WEAVELAB_SOURCE_DIR) + "/experiments/" + name; }
+std::string script(const char* name) { return std::string(WEAVELAB_SOURCE_DIR) + "/experiments/common/" + name; }
 
 test::CommandResult run_script(const char* name, const std::string& args) {
   return test::run_command(std::string(test::python()) + " " + test::shell_quote(script(name)) + " " + args);

@@ -13,7 +13,7 @@ import unittest
 
 from support import CLI, SOURCE_DIR
 
-MERGE = os.path.join(SOURCE_DIR, "experiments", "workflows", "merge_fidelity.py")
+MERGE = os.path.join(SOURCE_DIR, "experiments", "common", "merge_fidelity.py")
 COLUMNS = ["variant", "model", "cpu_s", "worst_frame_rms_m", "time_error_worst_frame_rms_m", "outcome", "on_front"]
 
 

@@ -10,7 +10,7 @@ import unittest
 
 from support import SOURCE_DIR
 
-MERGE = os.path.join(SOURCE_DIR, "experiments", "workflows", "merge_parts.py")
+MERGE = os.path.join(SOURCE_DIR, "experiments", "common", "merge_parts.py")
 
 
 def write_part(folder, model, integrator, message):

@@ -1,26 +1,26 @@
-"""The speed table (README, "Benchmarks") in one run: per row the median over
-REPEATS runs of the backward-Euler step (be-linear, from the run summary's
-statistics: wall and process CPU time, user + system, over the steps only) or
-of the calibration fit (calibration.json: fit_wall_s, fit_cpu_s), for this
-build, for a reference build, and for this build on one thread. The runs of a
-repeat are interleaved (this, reference, one thread; row after row), so load
-from other processes falls on all of them alike.
+#!/usr/bin/python3
+"""The speed table in one run: per row the median over REPEATS runs of the
+backward-Euler step (be-linear, from the run summary's statistics: wall and
+process CPU time, user + system, over the steps only) or of the calibration fit
+(calibration.json: fit_wall_s, fit_cpu_s), for this build, for a reference
+build when one is given, and for this build on one thread. The runs of a repeat
+are interleaved (this, reference, one thread; row after row), so load from
+other processes falls on all of them alike.
 
-    bench/speed_table.sh [ROW ...]
+    experiments/speed/scripts/speed_table.py [ROW ...] [--weavelab PROGRAM] [--reference PROGRAM]
+        [--repeats 3] [--calibration-starts 4] [--csv OUT.csv] [--markdown OUT.md]
 
-Environment:
-    WL_BIN                 this build (default build/weavelab)
-    WL_REFERENCE_BIN       the reference build (default: none, only this build)
-    WL_SPEED_REPEATS       runs per row and build (default 3)
-    WL_CALIBRATION_STARTS  starts of the calibration row (default 4)
-
-Rows: yarn-17, fem-17, yarn-65, fem-65, fem-65-stride2 (the default, about 5 min
-with a reference), and on request calibrate (a fit takes minutes per run) and
-yarn-257 (10 steps of 328 197 DoFs, about 4 GB and 2 min per run). Each run's
-peak resident memory is reported beside its step.
+Rows: yarn-17, fem-17, yarn-65, fem-65, fem-65-stride2 (the default), and on
+request calibrate (a fit takes minutes per run) and yarn-257 (10 steps of
+328 197 DoFs, about 4 GB per run). Each run's peak resident memory is reported
+beside its step. The Markdown table and the ratios between rows go to stdout
+(and --markdown); --csv has one row per table row and build.
 "One thread" is OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 OMP_THREAD_LIMIT=1: the
 thread limit holds CHOLMOD too, whose parallel loops name their own thread count.
 """
+import argparse
+import csv
+import io
 import json
 import os
 import shutil
@@ -29,7 +29,7 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
 SCENES = os.path.join(ROOT, "experiments", "scenes")
 ONE_THREAD = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "OMP_THREAD_LIMIT": "1"}
 
@@ -37,13 +37,6 @@ ONE_THREAD = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "OMP_THREAD_L
 def fail(message, code=2):
     print(f"speed_table: {message}", file=sys.stderr)
     sys.exit(code)
-
-
-def positive_int(name, default):
-    text = os.environ.get(name, str(default))
-    if not text.isdigit() or int(text) < 1:
-        fail(f"{name}: got '{text}', expected a positive integer")
-    return int(text)
 
 
 def stride2_scene(tmp):
@@ -105,18 +98,32 @@ def measure(binary, row, env_extra, tmp, starts):
     return result
 
 
+def parse_args():
+    parser = argparse.ArgumentParser(description="The speed table: medians of interleaved runs.")
+    parser.add_argument("rows", nargs="*", help="rows (default: every row but calibrate and yarn-257)")
+    parser.add_argument("--weavelab", default=os.path.join(ROOT, "build", "weavelab"), help="this build")
+    parser.add_argument("--reference", default="", help="a reference build to compare with (default none)")
+    parser.add_argument("--repeats", type=int, default=3, help="runs per row and build")
+    parser.add_argument("--calibration-starts", type=int, default=4, help="starts of the calibration row")
+    parser.add_argument("--csv", help="write the medians here, one row per table row and build")
+    parser.add_argument("--markdown", help="write the tables here too")
+    args = parser.parse_args()
+    for name in ("repeats", "calibration_starts"):
+        if getattr(args, name) < 1:
+            fail(f"--{name.replace('_', '-')}: got {getattr(args, name)}, expected a positive integer")
+    return args
+
+
 def main():
-    binary = os.environ.get("WL_BIN", os.path.join(ROOT, "build", "weavelab"))
-    reference = os.environ.get("WL_REFERENCE_BIN", "")
-    repeats = positive_int("WL_SPEED_REPEATS", 3)
-    starts = positive_int("WL_CALIBRATION_STARTS", 4)
+    args = parse_args()
+    binary, reference, repeats, starts = args.weavelab, args.reference, args.repeats, args.calibration_starts
     for b in [binary] + ([reference] if reference else []):
         if not (os.path.isfile(b) and os.access(b, os.X_OK)):
             fail(f"no executable program at '{b}'")
     tmp = tempfile.mkdtemp(prefix="speed_table_")
     try:
         rows = run_rows(tmp)
-        names = sys.argv[1:] or [n for n in rows if n not in ON_REQUEST]
+        names = args.rows or [n for n in rows if n not in ON_REQUEST]
         for n in names:
             if n not in rows and n != "calibrate":
                 fail(f"unknown row '{n}', expected one of {', '.join(list(rows) + ['calibrate'])}")
@@ -131,23 +138,55 @@ def main():
                     w, c, _ = samples[(n, label)][-1]
                     print(f"repeat {r + 1}/{repeats} {n:15s} {label:10s} wall {w:9.3f} cpu {c:9.3f}", file=sys.stderr,
                           flush=True)
-        report(names, rows, builds, samples, binary, reference, repeats, starts)
+        text = io.StringIO()
+        report(names, rows, builds, samples, binary, reference, repeats, starts, text)
+        print(text.getvalue(), end="")
+        if args.markdown:
+            write_atomically(args.markdown, text.getvalue())
+        if args.csv:
+            write_csv(args.csv, names, rows, builds, samples, starts)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
 
-def report(names, rows, builds, samples, binary, reference, repeats, starts):
+def write_atomically(path, text):
+    with open(path + ".tmp", "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(path + ".tmp", path)
+
+
+def write_csv(path, names, rows, builds, samples, starts):
+    """One line per row and build: medians of wall and CPU (ms per step; calibrate: s per fit)."""
+    out = io.StringIO()
+    w = csv.writer(out, lineterminator="\n")
+    w.writerow(["row", "label", "build", "unit", "dofs", "wall", "cpu", "factorizations_per_step",
+                "gmres_iterations_per_step", "peak_gb", "repeats"])
+    for n in names:
+        for label, _, _ in builds:
+            s = samples[(n, label)]
+            facts = s[0][2]
+            w.writerow([n, f"calibrate, {starts} starts (fit)" if n == "calibrate" else rows[n][0], label,
+                        "s per fit" if n == "calibrate" else "ms per step", facts.get("dofs", ""),
+                        f"{statistics.median(x[0] for x in s):.4g}", f"{statistics.median(x[1] for x in s):.4g}",
+                        f"{facts['fact']:.3f}" if "fact" in facts else "",
+                        f"{facts['krylov']:.2f}" if "krylov" in facts else "",
+                        f"{statistics.median(x[2]['peak_gb'] for x in s):.3f}" if "peak_gb" in facts else "",
+                        len(s)])
+    write_atomically(path, out.getvalue())
+
+
+def report(names, rows, builds, samples, binary, reference, repeats, starts, out):
     med = {k: (statistics.median(s[0] for s in v), statistics.median(s[1] for s in v)) for k, v in samples.items()}
-    print(f"this build: {binary}; reference: {reference or 'none'}; medians of {repeats} interleaved runs;")
-    print("per be-linear step in ms (calibrate: the fit in s); wall / CPU (user + system)")
-    print()
+    print(f"this build: {binary}; reference: {reference or 'none'}; medians of {repeats} interleaved runs;", file=out)
+    print("per be-linear step in ms (calibrate: the fit in s); wall / CPU (user + system)", file=out)
+    print(file=out)
     head = "| row | DoFs | this: wall / CPU | factorizations, GMRES its per step | peak memory [GB]"
     head += ": this / reference |" if reference else " |"
     if reference:
         head += " reference: wall / CPU | speed-up vs reference: wall / CPU |"
     head += " this, one thread: wall / CPU |"
-    print(head)
-    print("|" + "---|" * (head.count("|") - 1))
+    print(head, file=out)
+    print("|" + "---|" * (head.count("|") - 1), file=out)
     for n in names:
         w, c = med[(n, "this")]
         facts = samples[(n, "this")][0][2]
@@ -162,19 +201,19 @@ def report(names, rows, builds, samples, binary, reference, repeats, starts):
             line += f" {rw:.3f} / {rc:.3f} | {rw / w:.2f} / {rc / c:.2f} |"
         ow, oc = med[(n, "one thread")]
         line += f" {ow:.3f} / {oc:.3f} |"
-        print(line)
+        print(line, file=out)
     # Ratios between rows of one build (from the medians above).
     pairs = [("yarn-65", "fem-65"), ("yarn-65", "fem-65-stride2"), ("yarn-17", "fem-17")]
     pairs = [p for p in pairs if p[0] in names and p[1] in names]
     if pairs:
-        print()
-        print("| ratio of steps | this: wall / CPU |" + (" reference: wall / CPU |" if reference else ""))
-        print("|---|---|" + ("---|" if reference else ""))
+        print(file=out)
+        print("| ratio of steps | this: wall / CPU |" + (" reference: wall / CPU |" if reference else ""), file=out)
+        print("|---|---|" + ("---|" if reference else ""), file=out)
         for a, b in pairs:
             line = f"| {rows[a][0]} / {rows[b][0]} |"
             for label in ["this"] + (["reference"] if reference else []):
                 line += f" {med[(a, label)][0] / med[(b, label)][0]:.2f} / {med[(a, label)][1] / med[(b, label)][1]:.2f} |"
-            print(line)
+            print(line, file=out)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Table and chart of the pattern study: the fitted continuum parameters of each
 fabric (calibration.json from `weavelab calibrate`) against the weave pattern.
 Usage: summarize.py OUT_DIR CALIBRATION_JSON...

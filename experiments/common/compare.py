@@ -29,7 +29,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import weavelab_io as wio  # noqa: E402
+import runs as wio  # noqa: E402
 
 RELATIVE_TIME_TOLERANCE = 1e-9  # of the output interval
 

@@ -7,14 +7,16 @@ and the script prints the measured speed-up and an estimate for more cores from
 the per-job times of the serial pass (longest-job-first on K workers: the sum of
 the jobs over K, never less than the longest job).
 
-    bench/sweep_scaling.py [--workers 2] [--estimate 16] [--ladder error-budget|models]
+    experiments/speed/scripts/sweep_scaling.py [--workers 2] [--estimate 16] [--ladder error-budget|models]
+        [--weavelab PROGRAM] [--csv OUT]
 
 Ladders on the 17×17 hanging cloth, 0.05 s: error-budget, the serial loop of
-experiments/error_budget.sh (integrators and steps); models, yarn and FEM under
+the error-budget study (integrators and steps); models, yarn and FEM under
 be-linear, be-newton and sdirk2. Each job runs on one thread (OMP_NUM_THREADS=1,
 OPENBLAS_NUM_THREADS=1): one process per core. Exit 1 when the passes differ.
 """
 import argparse
+import csv
 import filecmp
 import json
 import os
@@ -25,8 +27,8 @@ import tempfile
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-BIN = os.environ.get("WL_BIN", os.path.join(ROOT, "build", "weavelab"))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+BIN = os.path.join(ROOT, "build", "weavelab")  # --weavelab
 SCENES = os.path.join(ROOT, "experiments", "scenes")
 
 LADDERS = {
@@ -108,12 +110,24 @@ def makespan(times, workers):
     return max(loads)
 
 
+def write_row(path, row):
+    with open(path + ".tmp", "w", newline="", encoding="utf-8") as f:
+        w = csv.DictWriter(f, fieldnames=list(row), lineterminator="\n")
+        w.writeheader()
+        w.writerow(row)
+    os.replace(path + ".tmp", path)
+
+
 def main():
+    global BIN
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--estimate", type=int, default=16)
     ap.add_argument("--ladder", choices=sorted(LADDERS), default="error-budget")
+    ap.add_argument("--weavelab", default=BIN, help="the program (default build/weavelab)")
+    ap.add_argument("--csv", help="write the ladder's row (times, speed-up, estimates, identical) here")
     a = ap.parse_args()
+    BIN = a.weavelab
     if a.workers < 1 or a.estimate < 1:
         print("sweep_scaling: --workers and --estimate must be positive", file=sys.stderr)
         sys.exit(2)
@@ -136,6 +150,13 @@ def main():
             print(f"estimate on {k} cores from the per-job times: {sum(times) / makespan(times, k):.2f}× "
                   f"(longest job {max(times):.2f} s of {sum(times):.2f} s)")
         print("outputs: bitwise the same as the serial pass" if not bad else "outputs DIFFER: " + ", ".join(bad))
+        if a.csv:
+            write_row(a.csv, {"ladder": a.ladder, "runs": len(jobs), "workers": a.workers,
+                              "serial_wall_s": f"{t_serial:.4g}", "parallel_wall_s": f"{t_parallel:.4g}",
+                              "speed_up": f"{t_serial / t_parallel:.3f}",
+                              "longest_job_s": f"{max(times):.4g}", "estimate_cores": a.estimate,
+                              "estimated_speed_up": f"{sum(times) / makespan(times, a.estimate):.3f}",
+                              "bitwise_identical": "yes" if not bad else "no"})
         sys.exit(1 if bad else 0)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Writes the scene of one fabric of the pattern study: the hanging-cloth scene
 with its weave pattern and hybrid yarn pair replaced (docs/models.md §8.1-§8.2).
 Usage: make_scene.py PATTERN PAIR OUT, PATTERN in plain/twill/satin, PAIR in 12/13/23.

@@ -6,9 +6,14 @@ thread (OMP_NUM_THREADS=1, OPENBLAS_NUM_THREADS=1) on both sides. Measures wall
 time and CPU time (user + system: the child's for the command line, process
 time for the module) and prints every run, the medians and their ratios.
 
-    PYTHONPATH=build/python /usr/bin/python3 bench/python_overhead.py \
-        [SCENE] [DURATION] [REPEATS]
+    PYTHONPATH=build/python /usr/bin/python3 experiments/speed/scripts/python_overhead.py \
+        [--scene SCENE] [--duration D] [--repeats N] [--weavelab PROGRAM] [--csv OUT]
+
+The CSV has one row per kind (cli, python_out, python_memory): median wall and
+CPU time [s] and their ratios to the command line's.
 """
+import argparse
+import csv
 import os
 import resource
 import statistics
@@ -21,11 +26,18 @@ os.environ["OMP_NUM_THREADS"] = "1"  # before the module loads OpenMP
 os.environ["OPENBLAS_NUM_THREADS"] = "1"
 import weavelab  # noqa: E402
 
-root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-scene_path = sys.argv[1] if len(sys.argv) > 1 else os.path.join(root, "experiments", "scenes", "hanging_wind.toml")
-duration = float(sys.argv[2]) if len(sys.argv) > 2 else 0.1
-repeats = int(sys.argv[3]) if len(sys.argv) > 3 else 5
-cli = os.environ.get("WEAVELAB_CLI", os.path.join(root, "build", "weavelab"))
+root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+parser = argparse.ArgumentParser(description="Cost of a run driven from Python against the command line.")
+parser.add_argument("--scene", default=os.path.join(root, "experiments", "scenes", "hanging_wind.toml"))
+parser.add_argument("--duration", type=float, default=0.1, help="simulated time [s]")
+parser.add_argument("--repeats", type=int, default=5, help="interleaved runs of each kind")
+parser.add_argument("--weavelab", default=os.path.join(root, "build", "weavelab"), help="the program")
+parser.add_argument("--csv", help="write the medians and ratios here")
+args = parser.parse_args()
+if args.repeats < 1 or not args.duration > 0:
+    parser.error(f"--repeats {args.repeats} --duration {args.duration}: expected a positive count and time")
+scene_path, duration, repeats, cli = args.scene, args.duration, args.repeats, args.weavelab
+
 
 def child_cpu():
     r = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -68,3 +80,15 @@ for label, t in (("wall", wall), ("CPU", cpu)):
     print(f"median {label}: " + ", ".join(f"{n} {m[n]:.3f} s" for n in names) +
           f"; python_out / cli = {m['python_out'] / m['cli']:.3f}, python_memory / cli = "
           f"{m['python_memory'] / m['cli']:.3f}")
+
+if args.csv:
+    with open(args.csv + ".tmp", "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(["kind", "scene", "duration_s", "steps", "repeats", "median_wall_s", "median_cpu_s",
+                    "wall_over_cli", "cpu_over_cli"])
+        mw = {n: statistics.median(wall[n]) for n in names}
+        mc = {n: statistics.median(cpu[n]) for n in names}
+        for n in names:
+            w.writerow([n, os.path.basename(scene_path), duration, steps, repeats, f"{mw[n]:.6g}", f"{mc[n]:.6g}",
+                        f"{mw[n] / mw['cli']:.4f}", f"{mc[n] / mc['cli']:.4f}"])
+    os.replace(args.csv + ".tmp", args.csv)

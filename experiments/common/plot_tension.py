@@ -19,7 +19,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import weavelab_io as wio  # noqa: E402
+import runs as wio  # noqa: E402
 
 CLIP_PERCENTILE = 98.0  # colour scale end when a few cells dominate (see plot())
 
