@@ -32,8 +32,9 @@ TEST_F(DiagnoseCli, WritesTheFilesAndTheChart) {
   for (const char* f :
        {"energies.csv", "energy_directions.csv", "distance.csv", "rows.csv", "distance.pvd", "diagnosis.json"})
     EXPECT_TRUE(fs::exists(out() / f)) << f;
-  const Result plot = wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
-                                            "/experiments/plot_diagnosis.py' '" + out().string() + "'");
+  const Result plot =
+      wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
+                            "/experiments/diagnosis/scripts/plot_diagnosis.py' '" + out().string() + "'");
   EXPECT_EQ(plot.exit_code, 0) << plot.output;
   EXPECT_GT(fs::file_size(out() / "diagnosis.png"), 1000u);
 }

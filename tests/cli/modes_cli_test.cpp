@@ -35,8 +35,9 @@ TEST_F(ModesCli, WritesTheFilesAndTheChart) {
   const std::string text((std::istreambuf_iterator<char>(vtu)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"mode_03\""), std::string::npos);
   EXPECT_NE(text.find("\"mode_03_slide\""), std::string::npos);
-  const Result plot = wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
-                                            "/experiments/plot_modes.py' '" + out().string() + "' --shapes 2");
+  const Result plot =
+      wl::test::run_command(std::string(wl::test::python()) + " '" + WEAVELAB_SOURCE_DIR +
+                            "/experiments/diagnosis/scripts/plot_modes.py' '" + out().string() + "' --shapes 2");
   EXPECT_EQ(plot.exit_code, 0) << plot.output;
   EXPECT_GT(fs::file_size(out() / "modes.png"), 1000u);
   EXPECT_GT(fs::file_size(out() / "modes_shapes.png"), 1000u);

@@ -1,5 +1,5 @@
-"""The validation table of experiments/dynamic_calibration.sh
-(experiments/validation_table.py) on synthetic runs: each distance beside both
+"""The validation table of the calibration study
+(experiments/calibration/scripts/validation_table.py) on synthetic runs: each distance beside both
 runs' time errors with the verdict their sizes give, the Markdown table and the
 chart written; a missing distance file is exit 2."""
 import csv
@@ -12,8 +12,8 @@ import unittest
 
 from support import SOURCE_DIR
 
-SCRIPT = os.path.join(SOURCE_DIR, "experiments", "validation_table.py")
-KINDS = ["first_guess", "static", "dynamic", "yarnmass", "shear128", "spline", "spline_mass"]
+SCRIPT = os.path.join(SOURCE_DIR, "experiments", "calibration", "scripts", "validation_table.py")
+KINDS = ["first_guess", "static", "dynamic", "yarnmass", "shear_scaled", "spline", "spline_mass"]
 
 
 def write_run(folder, mean_time_error):

@@ -1,15 +1,16 @@
 #!/usr/bin/python3
-"""The validation table and chart of experiments/dynamic_calibration.sh: for
-each scene and continuum (first guess, static fit, dynamic fit, static fit with
-the yarn level's node masses, that with its shear raised by 1.28, and the
-spline shear law without and with those masses), the mean and
+"""The validation table and chart of the calibration study's dynamic part
+(experiments/calibration/Snakefile): for each scene and continuum (first
+guess, static fit, dynamic fit, static fit with the yarn level's node masses,
+that with its shear raised by the config's shear_factor, and the spline shear
+law without and with those masses), the mean and
 worst per-frame RMS distance to the yarn level beside both runs' estimated
 time errors (summary.json "time_error", docs/models.md §7.8), and the
 distance against time.
 
     validation_table.py DIR SCENE=YARN_RUN ...
 
-reads DIR/distance_<kind>_<scene>.csv (experiments/compare.py) and the
+reads DIR/distance_<kind>_<scene>.csv (experiments/common/compare.py) and the
 continuum runs DIR/fem_<kind>_<scene>; writes DIR/summary.csv, DIR/summary.md
 and DIR/validation.png (.svg). Missing inputs: a message and exit 2.
 """
@@ -19,12 +20,12 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import weavelab_io as wio  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common"))
+import runs as wio  # noqa: E402
 
 KINDS = [("first_guess", "first guess (hinges)"), ("static", "static fit (grid lines)"),
          ("dynamic", "dynamic fit (grid lines)"), ("yarnmass", "static fit, yarn node mass"),
-         ("shear128", "yarn node mass, shear x1.28"), ("spline", "spline shear (grid lines)"),
+         ("shear_scaled", "yarn node mass, shear scaled"), ("spline", "spline shear (grid lines)"),
          ("spline_mass", "spline shear, yarn node mass")]
 
 
@@ -35,7 +36,7 @@ def mean_time_error(run):
 
 def read_distance(path):
     if not os.path.isfile(path):
-        raise wio.RunError(f"{path}: missing (run experiments/compare.py first)")
+        raise wio.RunError(f"{path}: missing (run experiments/common/compare.py first)")
     with open(path, newline="") as f:
         rows = [(float(r["time_s"]), float(r["rms_distance_m"]), float(r["max_distance_m"]))
                 for r in csv.DictReader(f)]

@@ -19,7 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from weavelab_io import fail, save_figure  # noqa: E402
+from runs import fail, save_figure  # noqa: E402
 
 
 def read_rows(path):

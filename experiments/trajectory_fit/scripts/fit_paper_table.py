@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Markdown table of experiments/fit_paper.sh: per parameter the ground truth
+"""Markdown table of the trajectory-fit study: per parameter the ground truth
 (the scene's value), Gong et al. 2022's recovered value (Table 2, 17×17
 Plain-(1,2), 25 frames), ours from 5, 10 and 25 frames (protocol start) and
 the mean ± std over the random starts from 5 and 25 frames, with relative errors
@@ -7,7 +7,8 @@ the mean ± std over the random starts from 5 and 25 frames, with relative error
 growing window, and the distance to the target beside the fitted run's time error.
 Then, for the fits named slide_* (μ where yarns slide, the slide_pull scene),
 each free parameter's truth, start and fitted value with the fit's cost.
-Usage: fit_paper_table.py DIR
+Usage: fit_paper_table.py DIR ... (the folders holding the fits, NAME/fit.json
+or NAME/start_K/fit.json; a folder that does not exist holds none)
 """
 import glob
 import json
@@ -16,8 +17,8 @@ import statistics
 import sys
 import tomllib
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from weavelab_io import fail  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common"))
+from runs import fail  # noqa: E402
 
 # Gong et al. 2022, Table 2, 17×17 row (learned on the first 25 frames).
 PAPER = {
@@ -47,16 +48,21 @@ def rel(value, true):
 
 
 def main():
-    if len(sys.argv) != 2:
-        fail("usage: fit_paper_table.py DIR")
-    d = sys.argv[1]
-    found = glob.glob(os.path.join(d, "*", "fit.json")) + glob.glob(os.path.join(d, "*", "start_*", "fit.json"))
-    runs = {os.path.relpath(os.path.dirname(p), d): load(p) for p in found}
+    if len(sys.argv) < 2:
+        fail("usage: fit_paper_table.py DIR ...")
+    runs = {}
+    for d in sys.argv[1:]:
+        found = glob.glob(os.path.join(d, "*", "fit.json")) + glob.glob(os.path.join(d, "*", "start_*", "fit.json"))
+        for p in found:
+            name = os.path.relpath(os.path.dirname(p), d)
+            if name in runs:
+                fail(f"{p}: a fit named {name} is in two folders")
+            runs[name] = load(p)
     protocol = [runs.get(f"protocol_{n}") for n in (5, 10, 25)]
     randoms = [[r for name, r in sorted(runs.items()) if name.startswith(f"random_{n}/")] for n in (5, 25)]
     slides = sorted(((n, r) for n, r in runs.items() if n.startswith("slide_")), key=lambda x: (len(x[1]["parameters"]), x[0]))
     if not any(protocol) and not slides:
-        fail(f"{d}: no protocol_N/fit.json or slide_NAME/fit.json (run experiments/fit_paper.sh)")
+        fail(f"{', '.join(sys.argv[1:])}: no protocol_N/fit.json or slide_NAME/fit.json (run the trajectory_fit study)")
     if any(protocol):
         hanging_table(protocol, randoms)
     if slides:

@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """The error-budget table: runs against a converged reference, with their estimates.
 
-    error_budget.py OUT REFERENCE LABEL...
+    error_budget.py OUT REFERENCE LABEL=RUN ...
 
-For each run folder OUT/LABEL: its CPU time and steps (summary.json), its true
-time error (the distance to REFERENCE, nodes paired by index, compare.py) and
-its estimated time error (summary.json "time_error", docs/models.md §7.8), each
-as the mean over frames after t = 0 of the RMS over nodes, over the first half
-of the duration, the second half and the whole. Writes OUT/error_budget.csv,
+For each run folder RUN, named LABEL in the table: its CPU time and steps
+(summary.json), its true time error (the distance to REFERENCE, nodes paired by
+index, experiments/common/compare.py) and its estimated time error
+(summary.json "time_error", docs/models.md §7.8), each as the mean over frames
+after t = 0 of the RMS over nodes, over the first half of the duration, the
+second half and the whole. Writes OUT/error_budget.csv,
 OUT/error_budget.md and OUT/error_budget.png/.svg. A run that did not end ok is
 listed with its outcome. Missing inputs: a message on stderr and exit status 2.
 """
@@ -16,9 +17,9 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common"))
 import compare  # noqa: E402
-import weavelab_io as wio  # noqa: E402
+import runs as wio  # noqa: E402
 
 
 def window_means(times, values, half):
@@ -28,10 +29,10 @@ def window_means(times, values, half):
     return [float(values[m].mean()) if m.any() else float("nan") for m in (first, second, keep)]
 
 
-def measure(run, reference):
+def measure(label, run, reference):
     summary = wio.read_summary(run, required=True)
     stats, result = summary["statistics"], summary["result"]
-    row = {"run": os.path.basename(os.path.normpath(run)), "outcome": result["outcome"],
+    row = {"run": label, "outcome": result["outcome"],
            "integrator": summary["integrator"]["name"], "cpu_s": stats["cpu_s"], "steps": stats["steps"]}
     if result["outcome"] != "ok":
         return row
@@ -51,11 +52,11 @@ def mm(x):
 
 
 def main(argv):
-    if len(argv) < 3:
+    if len(argv) < 3 or any("=" not in a for a in argv[2:]):
         wio.fail(__doc__.split("\n\n")[1].strip())
-    out, reference, labels = argv[0], argv[1], argv[2:]
+    out, reference, runs = argv[0], argv[1], [a.split("=", 1) for a in argv[2:]]
     try:
-        rows = [measure(os.path.join(out, label), reference) for label in labels]
+        rows = [measure(label, run, reference) for label, run in runs]
     except wio.RunError as e:
         wio.fail(str(e))
     head = ["run", "outcome", "cpu_s", "steps", "true_first_half_m", "true_second_half_m", "true_all_m",
