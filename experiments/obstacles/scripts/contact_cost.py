@@ -63,12 +63,15 @@ def main():
         times = {r: io.step_wall_times(io.read_metrics(r), r) for r in (with_run, without_run)}
         stats = {r: io.read_summary(r, required=True).get("statistics", {}) for r in (with_run, without_run)}
         w, wo = statistics.median(times[with_run]), statistics.median(times[without_run])
-        cost.append([model, f"{1e3 * w:.6g}", f"{1e3 * wo:.6g}", f"{w / wo:.4g}", len(times[with_run]),
+        cpu = {r: stats[r]["cpu_s"] / stats[r]["steps"] for r in (with_run, without_run)}
+        cost.append([model, f"{1e3 * w:.6g}", f"{1e3 * wo:.6g}", f"{w / wo:.4g}", f"{1e3 * cpu[with_run]:.6g}",
+                     f"{1e3 * cpu[without_run]:.6g}", f"{cpu[with_run] / cpu[without_run]:.4g}", len(times[with_run]),
                      len(times[without_run]), stats[with_run].get("rejected_steps", 0),
                      stats[with_run].get("factorizations", ""), stats[without_run].get("factorizations", ""),
                      stats[with_run].get("krylov_iters", ""), stats[without_run].get("krylov_iters", "")])
     write_csv(a.contact, ["model", "closest_node_to_sphere_m", "contact_force_z_at_end_N"], contact)
-    write_csv(a.cost, ["model", "median_step_with_ms", "median_step_without_ms", "ratio", "steps_with",
+    write_csv(a.cost, ["model", "median_step_with_ms", "median_step_without_ms", "ratio", "mean_cpu_per_step_with_ms",
+                       "mean_cpu_per_step_without_ms", "ratio_cpu", "steps_with",
                        "steps_without", "rejected_with", "factorizations_with", "factorizations_without",
                        "gmres_iterations_with", "gmres_iterations_without"], cost)
 
