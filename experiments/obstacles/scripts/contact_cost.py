@@ -3,7 +3,8 @@
 docs/models.md §3.11), per model: the closest any node came to the sphere over
 the frames (‖x − c‖ − r) and the vertical contact force on the cloth at the last
 frame (point data contact_force), then the median step wall time with and without
-the sphere, their ratio, the steps and the rejected (retaken) steps.
+the sphere and their ratio, the mean CPU time per step (summary.json's total over
+the steps) and its ratio, the steps and the rejected (retaken) steps.
 
     contact_cost.py SCENE --runs MODEL:WITH:WITHOUT [...] --contact CSV --cost CSV
 
