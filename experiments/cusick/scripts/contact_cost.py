@@ -4,7 +4,7 @@
 same scene without it, each run alone: the mean wall and CPU time per step
 (summary.json's totals over its steps), the median step wall time (metrics.csv),
 each as a ratio to the free fall's, and the step matrix solver's work
-(factorizations, GMRES iterations, the solver).
+(factorizations, GMRES iterations, the solver's name).
 
     contact_cost.py --runs SCENE:MODEL:DRAPE_RUN:FREE_RUN [...] --out CSV
 
@@ -52,7 +52,7 @@ def main():
             rows.append([scene, model, name, steps, f"{1e3 * wall:.5g}", f"{1e3 * cpu:.5g}", f"{1e3 * median:.5g}",
                          f"{wall / free_m[1]:.3g}", f"{cpu / free_m[2]:.3g}", f"{median / free_m[3]:.3g}",
                          stats.get("factorizations", ""), stats.get("krylov_iters", ""),
-                         stats.get("linear_solver", "")])
+                         str(stats.get("linear_solver", "")).split(" (")[0]])
     with open(a.out, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f, lineterminator="\n")
         w.writerow(HEADER)
