@@ -4,7 +4,10 @@ model, from drape_measure.py's per-frame table (with --state) and the run's
 summary.json: the time, drape coefficient and folds at the last frame, the
 kinetic energy there, the intersecting triangle pairs at the last frame and the
 most over the frames, the closest node to the pedestal over the frames, the
-steps and the rejected (retaken) ones, and the run's CPU time.
+steps and the rejected (retaken) ones, and the run's CPU time; beside them the
+drape coefficient and folds `weavelab run` measured on its last frame (summary.json
+"measures" "drape", from a scene with [measures] drape = true; empty otherwise),
+a check of the two measures against each other.
 
     drape_table.py --drape SCENE:MODEL:RUN:CSV [...] --out CSV
 
@@ -19,7 +22,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import runs as io  # noqa: E402
 
 HEADER = ["scene", "model", "time_s", "drape_coefficient", "folds", "kinetic_J", "intersecting_pairs_at_end",
-          "intersecting_pairs_most", "closest_to_pedestal_m", "steps", "rejected_steps", "cpu_s"]
+          "intersecting_pairs_most", "closest_to_pedestal_m", "steps", "rejected_steps", "cpu_s",
+          "run_drape_coefficient", "run_folds"]
 
 
 def read_frames_table(path):
@@ -46,12 +50,15 @@ def main():
         scene, model, run, table = parts
         rows = read_frames_table(table)
         last = rows[-1]
-        stats = io.read_summary(run, required=True).get("statistics", {})
+        summary = io.read_summary(run, required=True)
+        stats = summary.get("statistics", {})
+        measured = (summary.get("measures") or {}).get("drape") or {}
         pairs = [int(r["intersecting_triangle_pairs"]) for r in rows]
         out.append([scene, model, last["time_s"], last["drape_coefficient"], last["folds"], last["kinetic_J"],
                     last["intersecting_triangle_pairs"], max(pairs),
                     f"{min(float(r['closest_to_pedestal_m']) for r in rows):.6g}", stats.get("steps", ""),
-                    stats.get("rejected_steps", ""), f"{stats.get('cpu_s', float('nan')):.4g}"])
+                    stats.get("rejected_steps", ""), f"{stats.get('cpu_s', float('nan')):.4g}",
+                    measured.get("coefficient", ""), measured.get("folds", "")])
     with open(a.out, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f, lineterminator="\n")
         w.writerow(HEADER)
