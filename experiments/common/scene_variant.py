@@ -2,12 +2,15 @@
 """A study's variant of a scene: the scene's text with some keys set and,
 optionally, its obstacles removed, written beside the study's runs.
 
-    scene_variant.py SCENE OUT [--set TABLE.KEY=VALUE ...] [--without-obstacles]
+    scene_variant.py SCENE OUT [--set TABLE.KEY=VALUE ...] [--unset TABLE.KEY ...] [--without-obstacles]
 
 --set replaces the line `KEY = ...` of the table [TABLE] (a dotted TABLE such
 as cloth.pattern names a nested table), adds it at the table's top when the
 table has no such key, and appends the table when the scene has none. VALUE is
-TOML as written in a scene: 0.1, true, "exact". --without-obstacles drops every
+TOML as written in a scene: 0.1, true, "exact". --unset removes the key's line
+from its table, so that the scene takes the key's default (a key the scene does
+not set is left unset: e.g. a settling phase removed for a short run of a scene
+that may or may not have one). --without-obstacles drops every
 [[obstacles]] entry. The scene's comments and the order of its keys are kept.
 The result is parsed back and each key checked, so that a key that did not take
 is an error, not a silent run of the original scene.
@@ -68,6 +71,18 @@ def set_key(text, table, key, value):
     return "\n".join(lines)
 
 
+def unset_key(text, table, key):
+    lines = text.split("\n")
+    start = next((k for k, line in enumerate(lines) if re.match(rf"^\s*\[\s*{re.escape(table)}\s*\]\s*(#.*)?$", line)),
+                 None)
+    if start is None:
+        return text
+    end = next((k for k in range(start + 1, len(lines)) if re.match(r"^\s*\[", lines[k])), len(lines))
+    kept = [line for k, line in enumerate(lines)
+            if not (start < k < end and re.match(rf"^\s*{re.escape(key)}\s*=", line))]
+    return "\n".join(kept)
+
+
 def lookup(scene, table, key):
     node = scene
     for part in table.split(".") + [key]:
@@ -82,6 +97,7 @@ def main():
     ap.add_argument("scene")
     ap.add_argument("out")
     ap.add_argument("--set", action="append", default=[], metavar="TABLE.KEY=VALUE")
+    ap.add_argument("--unset", action="append", default=[], metavar="TABLE.KEY")
     ap.add_argument("--without-obstacles", action="store_true")
     a = ap.parse_args()
     try:
@@ -90,8 +106,15 @@ def main():
     except OSError as e:
         fail(f"cannot read the scene '{a.scene}': {e}")
     settings = [parse_setting(s) for s in a.set]
+    removals = []
+    for path in a.unset:
+        if "." not in path or "=" in path:
+            fail(f"--unset '{path}': expected TABLE.KEY")
+        removals.append(tuple(path.rsplit(".", 1)))
     if a.without_obstacles:
         text = without_obstacles(text)
+    for table, key in removals:
+        text = unset_key(text, table, key)
     for table, key, value, _ in settings:
         text = set_key(text, table, key, value)
     try:
@@ -101,6 +124,9 @@ def main():
     for table, key, value, parsed in settings:
         if lookup(scene, table, key) != parsed:
             fail(f"{a.scene}: {table}.{key} did not take the value {value}")
+    for table, key in removals:
+        if lookup(scene, table, key) is not None and (table, key) not in [(s[0], s[1]) for s in settings]:
+            fail(f"{a.scene}: {table}.{key} is still set after --unset (is it written inline?)")
     if a.without_obstacles and "obstacles" in scene:
         fail(f"{a.scene}: obstacles left after --without-obstacles")
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)

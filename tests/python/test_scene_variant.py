@@ -1,6 +1,7 @@
 """experiments/common/scene_variant.py, the studies' variants of a scene: a key
 replaced in its table with the line's comment kept, a key added to a table that
-lacks it, a table appended, a nested table, the obstacles removed; bad input is
+lacks it, a table appended, a nested table, a key removed, the obstacles
+removed; bad input is
 exit 2 with the key named and nothing written."""
 import os
 import subprocess
@@ -61,6 +62,15 @@ class SceneVariant(unittest.TestCase):
         self.assertIn("friction_coefficient = 0.1          # mu", text)
         self.assertTrue(text.startswith("# a scene\n"))
 
+    def test_unset_removes_the_key_of_that_table_only(self):
+        r, text = self.variant("--unset", "contact.warps", "--unset", "time.settle_after_s")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        scene = tomllib.loads(text)
+        self.assertNotIn("warps", scene["contact"])
+        self.assertEqual(scene["cloth"]["warps"], 5)
+        self.assertEqual(scene["contact"]["friction_coefficient"], 0.05)
+        self.assertNotIn("time", scene)  # a key the scene does not set stays unset
+
     def test_without_obstacles(self):
         r, text = self.variant("--without-obstacles")
         self.assertEqual(r.returncode, 0, r.stderr)
@@ -72,7 +82,8 @@ class SceneVariant(unittest.TestCase):
     def test_bad_input_is_exit_2_and_writes_nothing(self):
         for args, words in ((["--set", "contact.friction_coefficient=abc"], ["contact.friction_coefficient", "abc"]),
                             (["--set", "warps=3"], ["warps=3", "TABLE.KEY=VALUE"]),
-                            (["--set", "obstacles.shape=\"box\""], ["not TOML"])):
+                            (["--set", "obstacles.shape=\"box\""], ["not TOML"]),
+                            (["--unset", "warps"], ["--unset 'warps'", "TABLE.KEY"])):
             r, text = self.variant(*args)
             self.assertEqual(r.returncode, 2, args)
             for w in words:
