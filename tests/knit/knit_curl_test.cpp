@@ -1,7 +1,7 @@
 // Edge curl of free knit patches (docs/models.md §11.6, README "Knits"): with
 // contact compression a stockinette's wale (side) edges roll towards the back
 // while garter's stay nearly flat. A short, small version of
-// experiments/knits.sh: 8 courses × 10 wales for 40 ms.
+// the knits study's curl (experiments/knits/): 8 courses × 10 wales for 40 ms.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,7 +17,7 @@ constexpr int kCourses = 8, kWales = 10;
 
 // The mean over the two wale edges of the angle [deg] of (edge column − the
 // column three inside) above the cloth's plane (+z the face), as
-// experiments/plot_knits.py measures it.
+// experiments/knits/scripts/plot_knits.py measures it.
 double wale_edge_curl(const Frame& f) {
   Vec3 sum[kWales];
   int count[kWales] = {};

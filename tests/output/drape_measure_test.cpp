@@ -1,4 +1,4 @@
-// experiments/drape_measure.py (docs/models.md §3.11.6) on synthetic frames:
+// experiments/cusick/scripts/drape_measure.py (docs/models.md §3.11.6) on synthetic frames:
 // the flat cloth has drape coefficient 1 and 4 folds (its corners), a cloth
 // shrunk by s about the pedestal's axis has (s²A − A_p)/(A − A_p), and a cloth
 // mapped onto a 6-lobed star has 6 folds. --state adds per frame the kinetic
@@ -52,9 +52,9 @@ Measured measure(const std::filesystem::path& dir, const std::string& flags = ""
   std::ofstream(scene) << kScene;
   Measured m;
   m.command =
-      test::run_command(std::string(test::python()) + " " + WEAVELAB_SOURCE_DIR + "/experiments/drape_measure.py " +
-                        test::shell_quote((dir / "run").string()) + " " + test::shell_quote(scene.string()) +
-                        " --out " + test::shell_quote(csv.string()) + flags);
+      test::run_command(std::string(test::python()) + " " + WEAVELAB_SOURCE_DIR +
+                        "/experiments/cusick/scripts/drape_measure.py " + test::shell_quote((dir / "run").string()) +
+                        " " + test::shell_quote(scene.string()) + " --out " + test::shell_quote(csv.string()) + flags);
   std::ifstream in(csv);
   std::getline(in, m.header);
   for (std::string line; std::getline(in, line);) {

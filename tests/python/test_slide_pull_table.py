@@ -1,5 +1,5 @@
-"""The frame-by-frame table of experiments/slide_pull.sh
-(experiments/slide_pull_table.py) on two synthetic runs: the RMS and largest
+"""The frame-by-frame table of the slide-pull study
+(experiments/slide_pull/scripts/slide_pull_table.py) on two synthetic runs: the RMS and largest
 distance per frame beside each run's time error and slide indicator; a run
 without a time error estimate is exit 2."""
 import json
@@ -14,7 +14,7 @@ import numpy as np
 
 from support import SOURCE_DIR
 
-SCRIPT = os.path.join(SOURCE_DIR, "experiments", "slide_pull_table.py")
+SCRIPT = os.path.join(SOURCE_DIR, "experiments", "slide_pull", "scripts", "slide_pull_table.py")
 POINTS = np.array([[0.0, 0, 0], [1e-3, 0, 0], [0, 1e-3, 0], [1e-3, 1e-3, 0]])
 
 

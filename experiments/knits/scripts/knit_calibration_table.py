@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Table of knit calibrations (experiments/knit_calibration.sh): per scene, each
+"""Table of knit calibrations (the knits study, experiments/knits/): per scene, each
 test curve's residual as % of its range for every law fitted (one
 `weavelab calibrate` folder per law, named SCENE_LAW_RESIDUALS), with R(0), the
 response the knit's rest shape holds on the ring at zero load, as % of the range.

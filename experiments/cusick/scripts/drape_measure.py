@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Drape coefficient and fold count of a cloth over a disk pedestal, per frame
-(docs/models.md §3.11; the scene experiments/scenes/cusick_drape_65.toml).
+(docs/models.md §3.11; the scenes experiments/scenes/cusick_drape_*.toml, the
+study experiments/cusick/).
 
     drape_measure.py RUN SCENE [--out CSV] [--state]
 
@@ -15,10 +16,10 @@ minima (a flat square shows its 4 corners). --state adds, per frame, the
 kinetic energy (metrics.csv at the frame's time), the intersecting triangle
 pairs of the cloth (self_intersections.csv) and the closest signed distance of
 a node to the pedestal (negative: inside)."""
-import argparse, csv, math, sys, tomllib
+import argparse, csv, math, os, sys, tomllib
 import numpy as np
-sys.path.insert(0, __file__.rsplit("/", 1)[0])
-import weavelab_io as io
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common"))
+import runs as io  # noqa: E402
 
 
 def shadow(points, cells, lo, hi, step):

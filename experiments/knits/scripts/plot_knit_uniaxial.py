@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""Knit against woven under the same load per width (experiments/knit_uniaxial.sh,
-docs/models.md §11.8). Usage: plot_knit_uniaxial.py OUT
+"""Knit against woven under the same load per width (the knits study,
+experiments/knits/; docs/models.md §11.8). Usage: plot_knit_uniaxial.py OUT
 
 Reads OUT/{knit_y,knit_x,woven_y}/pull.{csv,json}; at loads F/W that every
 curve reached, the strain of each (linear interpolation between rungs) and the
-ratio knit / woven. Writes OUT/knit_uniaxial.png and prints the table."""
+ratio knit / woven. Writes OUT/knit_uniaxial.png and OUT/knit_uniaxial.csv (the
+table; empty cells where a curve never reached the load) and prints the table."""
 import csv
 import json
 import math
@@ -50,12 +51,16 @@ def main():
     print("\n| F/W [N/m] | " + " | ".join(f"strain, {names[k]}" for k in curves) + " | " +
           " | ".join(f"{names[k]} / woven" for k in curves if k != "woven_y") + " |")
     print("|---" * (2 * len(curves)) + "|")
+    table = [["load_N_per_m"] + [f"strain_{k}" for k in curves] + [f"{k}_over_woven" for k in curves if k != "woven_y"]]
     for load in loads:
         e = {k: strain_at(s, f, load) for k, (s, f, _) in curves.items()}
         ratios = [e[k] / e["woven_y"] for k in curves if k != "woven_y"]
         cell = lambda x, fmt: "—" if math.isnan(x) else format(x, fmt)
         print(f"| {load:g} | " + " | ".join(cell(e[k], ".4g") for k in curves) + " | " +
               " | ".join(cell(r, ".3g") for r in ratios) + " |")
+        table.append([f"{load:g}"] + ["" if math.isnan(x) else f"{x:.6g}" for x in [e[k] for k in curves] + ratios])
+    with open(os.path.join(out, "knit_uniaxial.csv"), "w", newline="") as f:
+        csv.writer(f, lineterminator="\n").writerows(table)
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

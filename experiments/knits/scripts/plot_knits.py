@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Edge curl and course width of free knit patches (experiments/knits.sh,
-docs/models.md §11). Usage: plot_knits.py OUT SCENE:RUN [SCENE:RUN ...]
+"""Edge curl and course width of free knit patches (the knits study,
+experiments/knits/; docs/models.md §11). Usage: plot_knits.py OUT SCENE:RUN [SCENE:RUN ...]
 
 Node k of a knit frame is end k % 2 of contact k // 2, contact = ((r + 1)·wales
 + c)·2 + side for contact rows r = −1 … courses−1 and wales c (the graph's
@@ -16,15 +16,16 @@ order, models/knit/knit_graph.cpp). Per frame:
   be close enough for each edge to turn by less than 180° between them); the
   mean of two opposite edges again;
 - course width: the mean over the inner contact rows of the row's extent in x.
-Writes OUT/knits.csv and OUT/knit_curl.png."""
+Writes OUT/knits.csv (every frame), OUT/knits_ends.csv (the first and last
+frame of each pattern) and OUT/knit_curl.png."""
 import os
 import sys
 import tomllib
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import weavelab_io as io  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common"))
+import runs as io  # noqa: E402
 
 
 def angle(v, along):
@@ -85,6 +86,9 @@ def main():
     text = ",".join(keys) + "\n" + "".join(
         ",".join(str(r[k]) if k == "pattern" else f"{r[k]:.6g}" for k in keys) + "\n" for r in rows)
     io.write_text_atomically(os.path.join(out, "knits.csv"), text)
+    ends = [dict(pattern=name, t_s=t, **m) for name, s in series.items() for t, m in (s[0], s[-1])]
+    io.write_text_atomically(os.path.join(out, "knits_ends.csv"), ",".join(keys) + "\n" + "".join(
+        ",".join(str(r[k]) if k == "pattern" else f"{r[k]:.6g}" for k in keys) + "\n" for r in ends))
     print(f"{'pattern':12s} {'t [s]':>6s} {'course-edge curl':>17s} {'wale-edge curl':>15s} "
           f"{'tilt':>6s} {'course width [mm]':>18s} {'turn: bottom':>13s} {'top':>7s} {'left':>7s} {'right':>7s}")
     for name, s in series.items():

@@ -6,8 +6,10 @@ crossings, each run's estimated time error at that frame (summary.json
 indicator (point data "sliding": the largest value and how many crossing DoFs
 are above 0.5).
 
-    slide_pull_table.py RUN_A RUN_B
+    slide_pull_table.py RUN_A RUN_B [--summary CSV]
 
+Prints the table (Markdown); --summary also writes the means over the frames
+after t = 0 (mean_rms_distance_um, mean_time_error_a_um, mean_time_error_b_um).
 Missing or malformed inputs: a message on stderr and exit status 2.
 """
 import os
@@ -15,8 +17,8 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import weavelab_io as wio  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common"))
+import runs as wio  # noqa: E402
 
 
 def time_errors(run, summary):
@@ -27,9 +29,13 @@ def time_errors(run, summary):
 
 
 def main():
-    if len(sys.argv) != 3:
-        wio.fail("usage: slide_pull_table.py RUN_A RUN_B")
-    runs = sys.argv[1:]
+    args = sys.argv[1:]
+    summary = None
+    if len(args) == 4 and args[2] == "--summary":
+        summary, args = args[3], args[:2]
+    if len(args) != 2:
+        wio.fail("usage: slide_pull_table.py RUN_A RUN_B [--summary CSV]")
+    runs = args
     try:
         frames = [wio.read_frames(r) for r in runs]
         errors = [time_errors(r, wio.read_summary(r, required=True)) for r in runs]
@@ -52,6 +58,10 @@ def main():
             print(f"| {1e3 * ta:.4g} | {1e6 * rms:.3g} / {1e6 * d.max():.3g} | {tes} | {sl[0]} | {sl[1]} |")
         print(f"\nmean over frames after t = 0 of the RMS distance: {1e6 * np.mean(distances):.3g} μm; "
               f"mean time error: A {1e6 * errors[0][1]:.3g} μm, B {1e6 * errors[1][1]:.3g} μm")
+        if summary:
+            wio.write_text_atomically(summary, "mean_rms_distance_um,mean_time_error_a_um,mean_time_error_b_um\n"
+                                      f"{1e6 * np.mean(distances):.6g},{1e6 * errors[0][1]:.6g},"
+                                      f"{1e6 * errors[1][1]:.6g}\n")
     except wio.RunError as e:
         wio.fail(str(e))
 

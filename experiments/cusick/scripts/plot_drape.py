@@ -1,12 +1,13 @@
 #!/usr/bin/python3
-"""The Cusick-style drape of both models side by side, and its measures in time.
+"""The Cusick-style drape of the models side by side, and its measures in time.
 
-    plot_drape.py FOLDER --out PNG
+    plot_drape.py FOLDER --out PNG [--models yarn,fem]
 
-FOLDER is what experiments/cusick.sh writes (drape_yarn/, drape_fem/ and
-drape_<model>.csv with --state columns). Top: the last frame of each model in
+FOLDER holds, per model, the run drape_<model>/ and its per-frame table
+drape_<model>.csv (drape_measure.py --state), as the cusick study
+(experiments/cusick/Snakefile) writes them. Top: the last frame of each model in
 3-D, coloured by height, with the pedestal's rim. Bottom: the drape coefficient
-and the kinetic energy of both models against time.
+and the kinetic energy of the models against time.
 Missing or malformed inputs: a message on stderr and exit status 2.
 """
 import argparse
@@ -16,10 +17,10 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import weavelab_io as wio  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common"))
+import runs as wio  # noqa: E402
 
-MODELS = (("yarn", "yarn level"), ("fem", "continuum (FEM)"))
+LABELS = {"yarn": "yarn level", "fem": "continuum (FEM)"}
 
 
 def read_csv(path):
@@ -49,7 +50,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("folder")
     ap.add_argument("--out", required=True)
+    ap.add_argument("--models", default="yarn,fem", help="comma-separated models (default yarn,fem)")
     a = ap.parse_args()
+    models = [(m, LABELS.get(m, m)) for m in a.models.split(",") if m]
     import matplotlib
 
     matplotlib.use("Agg")
@@ -57,11 +60,11 @@ def main():
 
     fig = plt.figure(figsize=(11, 8))
     measures = {}
-    for k, (model, label) in enumerate(MODELS):
+    for k, (model, label) in enumerate(models):
         t, mesh = wio.read_frames(os.path.join(a.folder, f"drape_{model}"))[-1]
         _, obstacles = wio.read_frames(os.path.join(a.folder, f"drape_{model}"), "obstacles")[-1]
         measures[model] = read_csv(os.path.join(a.folder, f"drape_{model}.csv"))
-        ax = fig.add_subplot(2, 2, k + 1, projection="3d")
+        ax = fig.add_subplot(2, len(models), k + 1, projection="3d")
         p = mesh.points
         ax.plot_trisurf(p[:, 0] * 1e3, p[:, 1] * 1e3, p[:, 2] * 1e3, triangles=triangles(mesh), cmap="viridis",
                         linewidth=0.0, antialiased=False)
@@ -79,7 +82,7 @@ def main():
         ax.set_zlabel("z [mm]")
         ax.set_box_aspect((1, 1, 0.6))
     ax_dc, ax_ke = fig.add_subplot(2, 2, 3), fig.add_subplot(2, 2, 4)
-    for model, label in MODELS:
+    for model, label in models:
         m = measures[model]
         ax_dc.plot(m["time_s"], m["drape_coefficient"], label=label)
         ax_ke.semilogy(m["time_s"], np.maximum(m["kinetic_J"], 1e-16), label=label)
