@@ -1,12 +1,13 @@
-"""Values a scene cannot hold: each refused with weavelab.SceneError naming the
-key, never a crash of the interpreter."""
+"""Values a scene cannot hold, and times a simulation cannot reach: each refused
+with an error naming the key (weavelab.SceneError) or the time, never a crash of
+the interpreter nor a run that does not end."""
 import os
 import subprocess
 import sys
 import unittest
 
 import weavelab
-from support import HANGING_WIND
+from support import HANGING_WIND, small_scene
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -81,6 +82,31 @@ class BadSceneValues(unittest.TestCase):
         scene = weavelab.load_scene(HANGING_WIND)
         scene.update({"wind.velocity_m_per_s": v, "gravity.acceleration_m_per_s2": v})
         self.assertEqual((scene["wind.velocity_m_per_s"], scene["gravity.acceleration_m_per_s2"]), (v, v))
+
+
+class SimulationTimes(unittest.TestCase):
+    def test_a_time_that_is_not_finite_or_past_the_end(self):
+        scene = small_scene(weavelab)  # 0.02 s
+        sim = weavelab.Simulation(scene)
+        for t in (float("inf"), float("nan"), 0.0200001, 1e300):
+            with self.assertRaises(ValueError) as e:
+                sim.advance_to(t)
+            self.assertIn("expected a time from Simulation.t (0 s) to the scene's time.duration_s (0.02 s)",
+                          str(e.exception))
+        self.assertEqual(sim.t, 0.0)
+        self.assertEqual(sim.advance_to(0.02)["outcome"], "ok")
+        self.assertEqual(sim.t, 0.02)
+        with self.assertRaises(ValueError) as e:
+            sim.step()
+        self.assertIn("nothing is left to step", str(e.exception))
+
+    def test_steps_end_at_the_duration(self):
+        scene = small_scene(weavelab)  # dt 1 ms
+        scene.update({"time.duration_s": 0.0025, "time.output_interval_s": 0.0025})  # two steps and a half one
+        sim = weavelab.Simulation(scene)
+        for _ in range(3):
+            self.assertEqual(sim.step()["outcome"], "ok")
+        self.assertEqual(sim.t, 0.0025)
 
 
 if __name__ == "__main__":
