@@ -156,7 +156,14 @@ std::vector<RecordedFrame> read_run_frames(const std::filesystem::path& run_dir)
     if (static_cast<double>(frames.size()) >= kMaxFrames + 1)
       throw RunReadError(where() + ": more than " + format_g(kMaxFrames + 1) + " frames (a run writes at most " +
                          format_g(kMaxFrames) + " after t = 0)");
-    frames.push_back(read_vtu({run_dir / file, frames.size(), time}));
+    const std::filesystem::path frame_file = run_dir / file;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(frame_file, ec))  // a device or a pipe may never end
+      throw RunReadError(where() + ": frame " + std::to_string(frames.size()) + " (t = " + format_g(time) +
+                         " s): " + frame_file.string() + ": " +
+                         (std::filesystem::exists(frame_file, ec) ? "not a regular file" : "missing") +
+                         " (expected a frame written by 'weavelab run')");
+    frames.push_back(read_vtu({frame_file, frames.size(), time}));
     if (frames.back().points.rows() != frames.front().points.rows())
       throw RunReadError((run_dir / file).string() + ": " + std::to_string(frames.back().points.rows()) +
                          " points, the first frame has " + std::to_string(frames.front().points.rows()));
