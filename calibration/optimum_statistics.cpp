@@ -13,7 +13,19 @@ OptimumStatistics optimum_statistics(ceres::Problem& problem, double* theta, int
   OptimumStatistics s;
   std::vector<double> residuals;
   ceres::CRSMatrix crs;
-  problem.Evaluate(ceres::Problem::EvaluateOptions(), &s.cost, &residuals, nullptr, &crs);
+  const bool evaluated = problem.Evaluate(ceres::Problem::EvaluateOptions(), &s.cost, &residuals, nullptr, &crs);
+  const auto finite = [](double x) { return std::isfinite(x); };
+  if (!evaluated || !std::isfinite(s.cost) || !std::all_of(residuals.begin(), residuals.end(), finite) ||
+      !std::all_of(crs.values.begin(), crs.values.end(), finite) || crs.num_rows == 0) {
+    // Nothing to decompose: no parameter can be told, no covariance formed.
+    s.jacobian = Eigen::MatrixXd::Zero(0, n);
+    for (int k = 0; k < n; ++k) s.unidentifiable.push_back(k);
+    s.covariance_message =
+        crs.num_rows == 0 && evaluated
+            ? "no residuals at the optimum"
+            : "the residuals or their Jacobian cannot be evaluated or are not finite at the optimum: no statistics";
+    return s;
+  }
   s.jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
   for (int r = 0; r < crs.num_rows; ++r)
     for (int i = crs.rows[r]; i < crs.rows[r + 1]; ++i) s.jacobian(r, crs.cols[i]) = crs.values[i];

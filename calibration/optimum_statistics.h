@@ -25,7 +25,10 @@ struct OptimumStatistics {
   std::vector<std::vector<double>> correlation() const;
 };
 
-// `theta` is the problem's one parameter block, of size n.
+// `theta` is the problem's one parameter block, of size n. When the residuals
+// or the Jacobian cannot be evaluated or are not finite (a non-finite target
+// or simulation), the statistics are empty: a 0 × n Jacobian, every parameter
+// unidentifiable, no covariance, and covariance_message says why.
 OptimumStatistics optimum_statistics(ceres::Problem& problem, double* theta, int n);
 
 }  // namespace wl

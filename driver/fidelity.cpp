@@ -11,11 +11,11 @@
 #include "driver/fidelity_reference.h"
 #include "driver/recorded_run.h"
 #include "driver/time_error.h"
+#include "models/fem/fem_model.h"
+#include "models/fem/knit_contact_mesh.h"
 #include "output/atomic_file.h"
 #include "output/csv_table.h"
 #include "output/json_writer.h"
-#include "models/fem/fem_model.h"
-#include "models/fem/knit_contact_mesh.h"
 
 namespace wl {
 namespace {
@@ -36,6 +36,10 @@ class ComparedPoints {
   }
   FramePoints points(const Frame& f) const {
     return contacts_.empty() ? f.points : knit_contact_midpoints(contacts_, f.points);
+  }
+  // The points of a frame of `s`: its crossings, or the knit's stitch contacts.
+  int count(const Scene& s) const {
+    return contacts_.empty() ? s.nodes_u() * s.nodes_v() : static_cast<int>(contacts_.size());
   }
   std::vector<Vec2> uv(const Frame& f) const {
     std::vector<Vec2> uv;
@@ -280,6 +284,8 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   rec.step_ends = true;  // for the Richardson time-error estimate
   if (c.reference_from) {
     FidelityReference stored = read_fidelity_reference(*c.reference_from, fidelity_reference_key(c));
+    check_reference_frames(stored.frames, output_times(p.reference.variant.scene), compared.count(c.scene),
+                           *c.reference_from);
     ref = std::move(stored.frames);
     out.rows.push_back(stored.row);
     if (c.progress)
@@ -287,6 +293,7 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
                    c.reference_from->string().c_str());
   } else {
     rec.on_frame = [&](const Frame& f) {
+      ref.times.push_back(f.time);
       ref.x.push_back(compared.points(f));
       ref.uv.push_back(compared.uv(f));
     };

@@ -19,6 +19,7 @@ using FramePoints = decltype(Frame::points);  // crossings × 3, row-major
 // The reference's crossings at its output frames: positions, current material
 // coordinates (u, v) and the change of its total energy T + V since t = 0.
 struct ReferenceFrames {
+  std::vector<double> times;  // of the frames [s]
   std::vector<FramePoints> x;
   std::vector<std::vector<Vec2>> uv;
   std::vector<double> energy_change;  // (T + V)(t_k) − (T + V)(0) [J]
@@ -35,16 +36,24 @@ struct FidelityReference {
 std::string fidelity_reference_key(const FidelityConfig& config);
 
 // <dir>/reference.bin, written atomically. Format (little-endian, as held here):
-//   char[8] "WLFID01\0"; key (u64 length, bytes); the row: strings variant, model,
+//   char[8] "WLFID02\0"; key (u64 length, bytes); the row: strings variant, model,
 //   outcome, message, same_as_full, time_error_method; i64 dofs, steps; f64 cpu_s,
 //   wall_s, rms_m, worst_frame_rms_m, max_m, energy_diff_J, compared_fraction,
 //   time_error_mean_rms_m, time_error_worst_frame_rms_m; u64 frames, crossings;
-//   per frame f64 x[crossings × 3] (row-major), f64 uv[crossings × 2], f64 energy_change.
+//   per frame f64 time, f64 x[crossings × 3] (row-major), f64 uv[crossings × 2],
+//   f64 energy_change.
 void write_fidelity_reference(const std::filesystem::path& dir, const std::string& key, const FidelityReference& ref);
 
 // Reads <dir>/reference.bin; throws std::invalid_argument naming the file when
 // it is missing, not such a file, or written for another key (another scene,
 // overrides, reference or resolution).
 FidelityReference read_fidelity_reference(const std::filesystem::path& dir, const std::string& key);
+
+// The frames a reference of the scene has: one at each output time, each of
+// `crossings` compared points, every value finite. Throws std::invalid_argument
+// naming <dir>/reference.bin and what differs (a file whose key matches but
+// whose frames do not: damaged or written by other code).
+void check_reference_frames(const ReferenceFrames& frames, const std::vector<double>& output_times, int crossings,
+                            const std::filesystem::path& dir);
 
 }  // namespace wl

@@ -30,6 +30,10 @@ void install_interrupt_handlers() {
 
 int interrupt_signal() { return g_signal; }
 
+std::string interrupted_message(int signal) {
+  return std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal");
+}
+
 int interrupted_exit_code(int signal) { return 128 + signal; }
 
 InterruptScope::InterruptScope() {

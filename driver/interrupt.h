@@ -6,12 +6,16 @@
 // silences the progress and never loses the record.
 #pragma once
 #include <csignal>
+#include <string>
 
 namespace wl {
 
 void install_interrupt_handlers();
 // The signal received since install_interrupt_handlers() (SIGINT, SIGTERM), or 0.
 int interrupt_signal();
+// What a record says of a run the signal ended: "interrupted by SIGINT",
+// "interrupted by SIGTERM" ("interrupted by a signal" for any other).
+std::string interrupted_message(int signal);
 // Conventional exit status of a process ended by `signal`: 128 + signal.
 int interrupted_exit_code(int signal);
 

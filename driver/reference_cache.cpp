@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "driver/experiment_meta.h"
+#include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/binary_io.h"
 
@@ -31,6 +32,12 @@ std::string format_g(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", x);
   return buf;
+}
+
+// The points of a frame of the model (its nodes): a trajectory has 3 rows per point.
+Eigen::Index frame_points(const Scene& scene, const std::string& model_name) {
+  const std::unique_ptr<Model> model = make_model(scene, model_name);
+  return model->frame(0.0, model->initial_q(), model->initial_v()).points.rows();
 }
 
 }  // namespace
@@ -89,7 +96,10 @@ Reference load_or_compute_reference(const Scene& scene, const std::string& scene
   ref.file = options.cache_dir / (ref.hash + ".bin");
   const std::vector<double> times = output_times(scene);
   if (read_reference_file(ref.file, key, ref)) {
-    bool same = ref.trajectory.times.size() == times.size();
+    // The file holds this scene's trajectory: its output times, its model's points, finite.
+    bool same = ref.trajectory.times.size() == times.size() &&
+                ref.trajectory.positions.rows() == 3 * frame_points(scene, model_name) &&
+                ref.trajectory.positions.allFinite();
     for (size_t k = 0; same && k < times.size(); ++k) same = std::abs(ref.trajectory.times[k] - times[k]) < 1e-12;
     if (same) {
       ref.from_cache = true;

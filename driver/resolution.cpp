@@ -16,8 +16,12 @@ std::string Resolution::describe() const {
 Resolution parse_resolution(const std::string& option, const std::string& value, double rtol) {
   if (value != "scene" && value != "controlled")
     throw std::invalid_argument(option + ": got '" + value + "', expected 'controlled' or 'scene'");
-  if (!(rtol > 0.0) || !(rtol < 1.0) || !std::isfinite(rtol))
-    throw std::invalid_argument("--rtol: got " + std::to_string(rtol) + ", expected a tolerance in (0, 1)");
+  if (!(rtol > 0.0) || !(rtol < 1.0) || !(1e-3 * rtol > 0.0)) {  // atol = 1e-3·rtol (at_resolution)
+    char got[32];
+    std::snprintf(got, sizeof got, "%g", rtol);
+    throw std::invalid_argument("--rtol: got " + std::string(got) +
+                                ", expected a tolerance in (0, 1) whose atol = 1e-3·rtol is > 0");
+  }
   return {value == "scene", rtol};
 }
 

@@ -12,12 +12,12 @@
 #include "driver/interrupt.h"
 #include "driver/run_settings.h"
 #include "driver/run_summary.h"
+#include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/metrics_csv.h"
 #include "output/pvd_series.h"
 #include "output/run_folder.h"
 #include "output/self_intersection.h"
-#include "models/model_factory.h"
 
 namespace wl {
 namespace {
@@ -61,12 +61,7 @@ bool written_by_a_run(const std::filesystem::path& rel) {
 // Thrown from the step callback to end the run after the step a signal arrived in.
 struct Interrupted {};
 
-StepResult interrupted_result() {
-  const int sig = interrupt_signal();
-  return {Outcome::interrupted, std::string("interrupted by ") + (sig == SIGINT    ? "SIGINT"
-                                                                  : sig == SIGTERM ? "SIGTERM"
-                                                                                   : "a signal")};
-}
+StepResult interrupted_result() { return {Outcome::interrupted, interrupted_message(interrupt_signal())}; }
 
 // The force at (q, 0): an equilibrium has none on a free DoF (the velocity
 // terms, friction's damping among them, are left out; its anchors are not).

@@ -48,7 +48,12 @@ const Overridable* overridden(const std::string& key, const std::map<std::string
 
 [[noreturn]] void fail(const Scene& scene, const std::map<std::string, std::string>& record, const std::string& key,
                        const std::string& value, const std::string& expected) {
-  if (const Overridable* o = overridden(key, record)) throw SettingError(o->option, value, expected);
+  if (const Overridable* o = overridden(key, record)) {
+    if (key == "time.atol")  // set by --rtol: atol = 1e-3·rtol
+      throw SettingError(o->option, record.at(o->record),
+                         "a tolerance whose atol = 1e-3·rtol is " + expected + " (it gives " + value + ")");
+    throw SettingError(o->option, value, expected);
+  }
   const auto line = scene.key_lines.find(key);
   if (line != scene.key_lines.end()) throw SceneError(scene.source, line->second, key, value, expected);
   const auto table = scene.key_lines.find(key.substr(0, key.find('.')));

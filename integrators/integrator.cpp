@@ -116,11 +116,12 @@ StepResult Integrator::fixed_step_part(double h, int halvings, const std::functi
   dq_dp_ = sq;
   dv_dp_ = sv;
   ++stats_.rejected_steps;
-  if (0.5 * h < opt_.min_step)
-    return {Outcome::step_too_small, "step " + std::to_string(0.5 * h) + " s below the minimum " +
-                                         std::to_string(opt_.min_step) + " s" +
-                                         (constrained ? " while keeping nodes outside obstacles" : "") +
+  if (0.5 * h < opt_.min_step) {
+    char below[96];
+    std::snprintf(below, sizeof below, "step %.3g s below the minimum %.3g s", 0.5 * h, opt_.min_step);
+    return {Outcome::step_too_small, below + std::string(constrained ? " while keeping nodes outside obstacles" : "") +
                                          (r.message.empty() ? "" : " (last failure: " + r.message + ")")};
+  }
   if (newton_failed && !constrained && halvings == kMaxNewtonHalvings) {
     char where[160];
     std::snprintf(where, sizeof where, " (the step retaken in halves %d times, down to %.4g s, at t = %.9g s)",

@@ -191,10 +191,12 @@ StepResult Sdirk2::adaptive_step(double t_out) {
     for (;;) {
       h = std::min(h_next_, t_out - t_);
       const bool clipped = h < h_next_;
-      if (h < opt_.min_step && !clipped)
-        return {Outcome::step_too_small, "step " + std::to_string(h) + " s below the minimum " +
-                                             std::to_string(opt_.min_step) + " s" +
-                                             (result.message.empty() ? "" : " (last failure: " + result.message + ")")};
+      if (h < opt_.min_step && !clipped) {
+        char below[96];
+        std::snprintf(below, sizeof below, "step %.3g s below the minimum %.3g s", h, opt_.min_step);
+        return {Outcome::step_too_small,
+                below + (result.message.empty() ? std::string() : " (last failure: " + result.message + ")")};
+      }
       Attempt a = attempt(h);
       iters += a.iters;
       // A step that would take a node out of the admissible states is rejected

@@ -23,8 +23,12 @@ class RunReadError : public std::invalid_argument {  // bad input: exit 2
   using std::invalid_argument::invalid_argument;
 };
 
-// Frames in the order of run.pvd; throws RunReadError naming the file and what
-// is wrong (missing, not a run folder, malformed, point counts that differ).
+// Frames in the order of run.pvd; throws RunReadError naming the file (and the
+// line, frame and point where there is one) and what is wrong: missing, not a
+// run folder, not a regular file, malformed, a value that is not finite, times
+// that do not increase, point counts that differ, more points than a scene may
+// have (kMaxYarns²) or than the file can hold, more frames than a run writes
+// (kMaxFrames after t = 0).
 std::vector<RecordedFrame> read_run_frames(const std::filesystem::path& run_dir);
 
 // The mean over frames of the RMS time error a run estimated (summary.json,

@@ -1,5 +1,6 @@
 #include "models/scene/obstacle_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -15,6 +16,24 @@ auto positive = [](double x) { return x > 0.0; };
 void read_size(TableReader& t, const char* key, double& out, const std::string& shape) {
   const std::string expected = "a number > 0 (m), required for shape = \"" + shape + "\"";
   if (!t.read_number(key, out, expected, positive)) t.fail_missing(key, expected);
+}
+
+// The mesh's checks square its coordinates (areas) and cube them (the enclosed
+// volume, orient_closed_mesh): the largest one, scaled, must cube to a finite
+// double that is not lost to underflow, so |scale·x| lies within
+// [1e-100, 1e100] m. Else the scale key is refused (and not the triangle it
+// would make look degenerate).
+void check_mesh_scale(TableReader& t, const ObstacleMesh& mesh, double scale) {
+  double largest = 0.0;
+  for (const auto& v : mesh.vertices)
+    for (double x : v) largest = std::max(largest, std::abs(x));
+  const double scaled = scale * largest;
+  if (scaled >= 1e-100 && scaled <= 1e100) return;
+  const std::string expected = "a number > 0 that keeps the mesh's largest coordinate (" + format_number(largest) +
+                               " in the file) within 1e-100 to 1e100 m once scaled (it gives " + format_number(scaled) +
+                               " m)";
+  if (const toml::node* n = t.table().get("scale")) t.fail_at(*n, "scale", expected);
+  t.fail_key("scale", expected, format_number(scale));
 }
 
 // shape = "mesh": file (relative to the scene file), scale > 0, side; the
@@ -38,7 +57,10 @@ void read_mesh(TableReader& t, const Scene& s, ObstacleSpec& o) {
   int side = 0;
   t.read_choice("side", side, {"outside", "both"});
   o.side = static_cast<ObstacleSpec::Side>(side);
-  auto mesh = std::make_shared<ObstacleMesh>(read_obj_mesh(o.mesh_file, o.scale));
+  auto mesh = std::make_shared<ObstacleMesh>(read_obj_mesh(o.mesh_file, 1.0));
+  check_mesh_scale(t, *mesh, o.scale);
+  for (auto& v : mesh->vertices)
+    for (double& x : v) x *= o.scale;
   if (o.side == ObstacleSpec::Side::outside) orient_closed_mesh(*mesh);
   o.mesh = std::move(mesh);
 }

@@ -98,6 +98,7 @@
 #include <sstream>
 
 #include "models/scene/obstacle_reader.h"
+#include "models/scene/scene_limits.h"
 #include "models/scene/toml_reader.h"
 
 namespace wl {
@@ -108,8 +109,6 @@ using scene_detail::format_number;
 using scene_detail::line_of;
 using scene_detail::Source;
 using scene_detail::TableReader;
-
-constexpr long long kMaxYarns = 16384;  // keeps node and DoF indices well inside int
 
 std::string eq(double x) { return " (= " + format_number(x) + ")"; }
 std::string eq(int x) { return " (= " + std::to_string(x) + ")"; }

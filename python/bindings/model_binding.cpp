@@ -1,5 +1,8 @@
 #include "python/bindings/model_binding.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include <pybind11/eigen.h>
@@ -49,6 +52,12 @@ py::dict csc_arrays(const SparseMatrix& a) {
   return d;
 }
 
+std::string seconds(double t) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", t);
+  return b;
+}
+
 py::object json_value(const Json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
 py::dict outcome_dict(const StepResult& r) {
@@ -73,15 +82,20 @@ class Simulation {
     check_linear_solver(scene.scene, *model_->model, {});
     integrator_ = make_integrator(scene.scene.integrator);
     options_ = scene_integrator_options(scene.scene);  // as a run: the [time] table
+    duration_ = scene.scene.duration_s;
     options_.linear_solver = parse_linear_solver(scene.scene.linear_solver);
     Model& m = *model_->model;
     integrator_->initialize(m, 0.0, m.initial_q(), m.initial_v(), options_);
   }
 
-  // Advances to t_out with the GIL released; a Ctrl-C ends it after the step under way.
+  // Advances to t_out, a time from Simulation.t to the scene's duration, with
+  // the GIL released; a Ctrl-C or SIGTERM ends it after the step under way.
   py::dict advance_to(double t_out) {
     if (busy_) throw py::value_error("Simulation: a call is already advancing it (another thread)");
-    if (!(t_out >= integrator_->t())) throw py::value_error("advance_to: t must be >= Simulation.t");
+    if (!std::isfinite(t_out) || t_out < integrator_->t() || t_out > duration_)
+      throw py::value_error("advance_to: got t = " + seconds(t_out) + " s, expected a time from Simulation.t (" +
+                            seconds(integrator_->t()) + " s) to the scene's time.duration_s (" + seconds(duration_) +
+                            " s)");
     struct Interrupted {};
     CallInterruption interruption;
     integrator_->on_step = [&](const StepRecord&) {
@@ -92,10 +106,10 @@ class Simulation {
     {
       py::gil_scoped_release release;
       try {
-        r = interruption.requested() ? StepResult{Outcome::interrupted, "interrupted by SIGINT"}
+        r = interruption.requested() ? StepResult{Outcome::interrupted, interrupted_message(interrupt_signal())}
                                      : integrator_->advance_to(t_out);
       } catch (const Interrupted&) {
-        r = {Outcome::interrupted, "interrupted by SIGINT"};
+        r = {Outcome::interrupted, interrupted_message(interrupt_signal())};
       } catch (...) {
         busy_ = false;
         throw;
@@ -106,7 +120,13 @@ class Simulation {
     return outcome_dict(r);
   }
 
-  py::dict step() { return advance_to(integrator_->t() + options_.dt); }
+  // One step of dt_s, the last one shortened to end at the scene's duration.
+  py::dict step() {
+    if (integrator_->t() >= duration_)
+      throw py::value_error("step: Simulation.t (" + seconds(integrator_->t()) +
+                            " s) is at the scene's time.duration_s: nothing is left to step");
+    return advance_to(std::min(integrator_->t() + options_.dt, duration_));
+  }
   double t() const { return integrator_->t(); }
   Vec q() const { return integrator_->q(); }
   Vec v() const { return integrator_->v(); }
@@ -119,6 +139,7 @@ class Simulation {
   std::shared_ptr<ModelHandle> model_;  // outlives the integrator, which holds a reference to it
   std::unique_ptr<Integrator> integrator_;
   IntegratorOptions options_;
+  double duration_ = 0.0;  // the scene's time.duration_s: what its schedules are defined over
   bool busy_ = false;
 };
 

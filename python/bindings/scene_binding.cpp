@@ -1,6 +1,8 @@
 #include "python/bindings/scene_binding.h"
 
+#include <algorithm>
 #include <sstream>
+#include <vector>
 
 #include "python/bindings/errors.h"
 
@@ -9,41 +11,94 @@ namespace py = pybind11;
 namespace wl::python {
 namespace {
 
-toml::table table_from_dict(const py::dict& d, const std::string& path);
+// Python values as TOML nodes: bool, int (64-bit), float, str, list/tuple (an
+// array; a list of dicts is an array of tables), dict (a table), numpy scalars
+// and arrays. A value that has none of these forms (None, an integer beyond 64
+// bits, a dict or list that contains itself or nests deeper than a scene can)
+// raises weavelab.SceneError naming its key path, e.g. "cloth.warps" or
+// "handles[1].node".
+class PythonToToml {
+ public:
+  explicit PythonToToml(std::string origin) : origin_(std::move(origin)) {}
 
-// A Python value as a TOML node: bool, int, float, str, list/tuple (an array;
-// a list of dicts is an array of tables), dict (a table), numpy scalars and arrays.
-std::unique_ptr<toml::node> node_from_python(const py::handle& x, const std::string& path) {
-  if (py::isinstance<py::bool_>(x)) return std::make_unique<toml::value<bool>>(x.cast<bool>());
-  if (py::isinstance<py::int_>(x)) return std::make_unique<toml::value<int64_t>>(x.cast<int64_t>());
-  if (py::isinstance<py::float_>(x)) return std::make_unique<toml::value<double>>(x.cast<double>());
-  if (py::isinstance<py::str>(x)) return std::make_unique<toml::value<std::string>>(x.cast<std::string>());
-  if (py::isinstance<py::dict>(x)) return std::make_unique<toml::table>(table_from_dict(x.cast<py::dict>(), path));
-  if (py::hasattr(x, "tolist") && !py::isinstance<py::list>(x))  // numpy scalar or array
-    return node_from_python(x.attr("tolist")(), path);
-  if (py::isinstance<py::list>(x) || py::isinstance<py::tuple>(x)) {
-    auto a = std::make_unique<toml::array>();
-    int k = 0;
-    for (const py::handle& item : x) {
-      auto node = node_from_python(item, path + "[" + std::to_string(k++) + "]");
-      a->push_back(std::move(*node));
+  std::unique_ptr<toml::node> node(const py::handle& x, const std::string& path) {
+    const Nesting nesting(*this, x, path);
+    if (py::isinstance<py::bool_>(x)) return std::make_unique<toml::value<bool>>(x.cast<bool>());
+    if (py::isinstance<py::int_>(x)) return std::make_unique<toml::value<int64_t>>(integer(x, path));
+    if (py::isinstance<py::float_>(x)) return std::make_unique<toml::value<double>>(x.cast<double>());
+    if (py::isinstance<py::str>(x)) return std::make_unique<toml::value<std::string>>(x.cast<std::string>());
+    if (py::isinstance<py::dict>(x)) return std::make_unique<toml::table>(entries(x.cast<py::dict>(), path));
+    if (py::hasattr(x, "tolist") && !py::isinstance<py::list>(x))  // numpy scalar or array
+      return node(x.attr("tolist")(), path);
+    if (py::isinstance<py::list>(x) || py::isinstance<py::tuple>(x)) {
+      auto a = std::make_unique<toml::array>();
+      int k = 0;
+      for (const py::handle& item : x) a->push_back(std::move(*node(item, path + "[" + std::to_string(k++) + "]")));
+      return a;
     }
-    return a;
+    refuse(path, x.is_none() ? "None" : "a value of type " + std::string(py::str(x.get_type().attr("__name__"))),
+           "a bool, int, float, str, list or dict" +
+               std::string(x.is_none() ? " (delete the key to have its default)" : ""));
   }
-  throw py::type_error("scene key '" + path + "': got a " + std::string(py::str(x.get_type().attr("__name__"))) +
-                       ", expected a bool, int, float, str, list or dict");
-}
 
-toml::table table_from_dict(const py::dict& d, const std::string& path) {
-  toml::table t;
-  for (const auto& [k, v] : d) {
-    const std::string key = py::str(k);
-    const std::string sub = path.empty() ? key : path + "." + key;
-    auto node = node_from_python(v, sub);
-    t.insert_or_assign(key, std::move(*node));
+  toml::table table(const py::dict& d, const std::string& path) {
+    const Nesting nesting(*this, d, path);
+    return entries(d, path);
   }
-  return t;
-}
+
+ private:
+  // A scene's tables nest a few levels (handles[1].node is 3); this is far beyond.
+  static constexpr size_t kMaxDepth = 32;
+
+  // The values under conversion, outermost first: a value among them contains itself.
+  class Nesting {
+   public:
+    Nesting(PythonToToml& c, const py::handle& x, const std::string& path) : c_(c) {
+      if (std::find(c.open_.begin(), c.open_.end(), x.ptr()) != c.open_.end() &&
+          (py::isinstance<py::dict>(x) || py::isinstance<py::list>(x)))
+        c.refuse(path, "a " + std::string(py::str(x.get_type().attr("__name__"))) + " that contains itself",
+                 "nested dicts and lists without cycles");
+      if (c.open_.size() == kMaxDepth)
+        c.refuse(path, "values nested deeper than " + std::to_string(kMaxDepth) + " levels",
+                 "at most " + std::to_string(kMaxDepth) + " levels of dicts and lists");
+      c.open_.push_back(x.ptr());
+    }
+    ~Nesting() { c_.open_.pop_back(); }
+    Nesting(const Nesting&) = delete;
+    Nesting& operator=(const Nesting&) = delete;
+
+   private:
+    PythonToToml& c_;
+  };
+
+  toml::table entries(const py::dict& d, const std::string& path) {
+    toml::table t;
+    for (const auto& [k, v] : d) {
+      const std::string key = py::str(k);
+      t.insert_or_assign(key, std::move(*node(v, path.empty() ? key : path + "." + key)));
+    }
+    return t;
+  }
+
+  int64_t integer(const py::handle& x, const std::string& path) {
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(x.ptr(), &overflow);
+    if (v == -1 && PyErr_Occurred()) throw py::error_already_set();
+    if (overflow) {
+      const long long bits = x.attr("bit_length")().cast<long long>();
+      refuse(path, bits < 256 ? std::string(py::str(x)) : "an integer of " + std::to_string(bits) + " bits",
+             "an integer from −2⁶³ to 2⁶³ − 1");
+    }
+    return v;
+  }
+
+  [[noreturn]] void refuse(const std::string& path, const std::string& value, const std::string& expected) {
+    raise_scene_error(SceneError(origin_, 0, path, value, expected), origin_);
+  }
+
+  std::string origin_;
+  std::vector<PyObject*> open_;
+};
 
 py::object python_from_node(const toml::node& n) {
   if (const auto* t = n.as_table()) {
@@ -132,7 +187,7 @@ void bind_scene(py::module_& m) {
   py::class_<SceneHandle>(m, "Scene",
                           "A validated scene (experiments/scenes/README.md); scene['time.dt_s'] = 0.002 edits a key "
                           "through the scene parser, a refused value raises weavelab.SceneError naming the key")
-      .def(py::init([](const py::dict& d) { return scene_from_table(table_from_dict(d, ""), "<dict>"); }),
+      .def(py::init([](const py::dict& d) { return scene_from_table(PythonToToml("<dict>").table(d, ""), "<dict>"); }),
            py::arg("tables"), "A scene from nested dicts shaped like the TOML file ({'cloth': {'warps': 9}, ...})")
       .def_static("load", &load, py::arg("path"), "Reads and validates a scene file (TOML)")
       .def(
@@ -153,8 +208,7 @@ void bind_scene(py::module_& m) {
             toml::table next = h.table;
             toml::table* t = parent_table(next, parts, true);
             if (!t) throw py::key_error("scene key '" + key + "': a part of it is not a table");
-            auto node = node_from_python(value, key);
-            t->insert_or_assign(parts.back(), std::move(*node));
+            t->insert_or_assign(parts.back(), std::move(*PythonToToml(h.origin).node(value, key)));
             replace_table(h, std::move(next));
           },
           py::arg("key"), py::arg("value"))
@@ -177,8 +231,7 @@ void bind_scene(py::module_& m) {
               const auto parts = split_key(key);
               toml::table* t = parent_table(next, parts, true);
               if (!t) throw py::key_error("scene key '" + key + "': a part of it is not a table");
-              auto node = node_from_python(v, key);
-              t->insert_or_assign(parts.back(), std::move(*node));
+              t->insert_or_assign(parts.back(), std::move(*PythonToToml(h.origin).node(v, key)));
             }
             replace_table(h, std::move(next));
           },

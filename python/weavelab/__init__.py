@@ -117,8 +117,10 @@ def run(scene, model="yarn", *, integrator=None, dt=None, duration=None, output_
 class Simulation(_core._Simulation):
     """A model and the scene's integrator ([time] integrator, dt_s, adaptive,
     rtol, atol), stepped from Python: step() advances by dt_s (one step of a
-    fixed-step method), advance_to(t) to a time; q, v, t, frame() and
-    model (for Model.evaluate at the current state) read it."""
+    fixed-step method; the last one ends at the scene's duration),
+    advance_to(t) to a time from t to the scene's duration (ValueError
+    otherwise); q, v, t, frame() and model (for Model.evaluate at the current
+    state) read it."""
 
     def __init__(self, scene, model="yarn"):
         super().__init__(scene, model)
@@ -133,7 +135,7 @@ class Simulation(_core._Simulation):
         return self._check(super().step())
 
     def advance_to(self, t):
-        """Advances to time t [s]; returns {"outcome", "message"}."""
+        """Advances to time t [s], at most the scene's duration; returns {"outcome", "message"}."""
         return self._check(super().advance_to(t))
 
 

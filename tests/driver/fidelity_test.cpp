@@ -6,6 +6,7 @@
 // jobs over a reference file gives the rows of one run bit for bit.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "driver/fidelity.h"
@@ -188,6 +189,51 @@ TEST_F(Fidelity, AReferenceFileOfAnotherSceneOrMissingIsRefused) {
   refused(same, "written for another scene");
   same.reference_from = dir_ / "nowhere";
   refused(same, "cannot be read");
+}
+
+// A file of the right key whose frames are not the scene's reference (damaged,
+// or written by other code): refused naming what differs, before any rung runs.
+TEST_F(Fidelity, AReferenceFileWhoseFramesAreNotTheScenesIsRefused) {
+  FidelityConfig reference = config(sliding_in_wind(), {});
+  reference.out_dir = dir_ / "reference";
+  reference.reference_only = true;
+  run_fidelity(reference, plan_fidelity(reference));
+  const std::string key = fidelity_reference_key(reference);
+  const FidelityReference good = read_fidelity_reference(dir_ / "reference", key);
+  ASSERT_EQ(good.frames.x.size(), 5u);  // 50 ms, a frame every 10 ms
+  ASSERT_EQ(good.frames.crossings(), 25);
+  ASSERT_EQ(good.frames.times.back(), 0.05);
+  auto refused = [&](const FidelityReference& tampered, const std::string& expected) {
+    write_fidelity_reference(dir_ / "tampered", key, tampered);
+    FidelityConfig rung = config(sliding_in_wind(), {"frozen_sliding"});
+    rung.out_dir = dir_ / "rung";
+    rung.reference_from = dir_ / "tampered";
+    try {
+      run_fidelity(rung, plan_fidelity(rung));
+      ADD_FAILURE() << "accepted; expected " << expected;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find((dir_ / "tampered" / "reference.bin").string() + ": " + expected),
+                std::string::npos)
+          << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "rung" / "fidelity.csv"));
+  };
+  FidelityReference four = good;  // 4 crossings per frame
+  for (FramePoints& x : four.frames.x) x = FramePoints(x.topRows(4));
+  for (auto& uv : four.frames.uv) uv.resize(4);
+  refused(four, "holds 5 frames of 4 compared points, the scene's reference has 5 frames (its output times) of 25");
+  FidelityReference short_one = good;  // one frame short
+  short_one.frames.times.pop_back();
+  short_one.frames.x.pop_back();
+  short_one.frames.uv.pop_back();
+  short_one.frames.energy_change.pop_back();
+  refused(short_one, "holds 4 frames of 25 compared points, the scene's reference has 5 frames");
+  FidelityReference shifted = good;  // frames at other times
+  shifted.frames.times[2] = 0.025;
+  refused(shifted, "frame 2 is at t = 0.025 s, the scene's output time is 0.03 s");
+  FidelityReference nan = good;
+  nan.frames.x[3](7, 1) = std::nan("");
+  refused(nan, "frame 3 holds a value that is not finite");
 }
 
 TEST_F(Fidelity, DefaultLadderLeavesOutWhatTheSceneCannotHave) {

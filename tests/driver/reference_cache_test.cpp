@@ -1,6 +1,7 @@
 // The reference trajectory and its cache (driver/reference_cache.h).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -70,6 +71,19 @@ TEST(ReferenceCache, SecondCallReadsTheFileAndAChangedSceneComputesAnew) {
   EXPECT_TRUE(second.attempts.empty());
   EXPECT_EQ(second.trajectory.positions, first.trajectory.positions);
   EXPECT_EQ(second.rtol, first.rtol);
+
+  // A file of the right key and times whose trajectory is not this scene's: computed anew.
+  const std::string key = reference_key(text, "fem", {}, o);
+  Reference fewer_points = first;
+  fewer_points.trajectory.positions = first.trajectory.positions.topRows(first.trajectory.positions.rows() - 3);
+  Reference not_finite = first;
+  not_finite.trajectory.positions(4, 0) = std::nan("");
+  for (const Reference& tampered : {fewer_points, not_finite}) {
+    write_reference_file(first.file, key, tampered);
+    const Reference again = load_or_compute_reference(scene, text, "fem", {}, o);
+    EXPECT_FALSE(again.from_cache);
+    EXPECT_EQ(again.trajectory.positions, first.trajectory.positions);
+  }
 
   const std::string other_text = text + "# changed\n";
   const Reference third = load_or_compute_reference(parse_scene(other_text, "tiny.toml"), other_text, "fem", {}, o);

@@ -33,13 +33,25 @@ print("finished")
 """
 
 
+SAYS = """
+import sys, weavelab, support
+sim = weavelab.Simulation(support.small_scene(weavelab, size=9, duration=100.0))
+print("running", flush=True)
+try:
+    sim.advance_to(100.0)
+except weavelab.Interrupted as e:
+    print(e, flush=True)
+    sys.exit(5)
+"""
+
+
 class Interrupt(unittest.TestCase):
-    def interrupt(self, script):
+    def interrupt(self, script, sig=signal.SIGINT):
         p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True,
                              cwd=os.path.dirname(os.path.abspath(__file__)))
         self.assertEqual(p.stdout.readline().strip(), "running")
         time.sleep(2.0)  # well inside the run (its set-up takes milliseconds)
-        p.send_signal(signal.SIGINT)
+        p.send_signal(sig)
         out, _ = p.communicate(timeout=120)
         self.assertEqual(p.returncode, 5, out)
         return out.strip()
@@ -49,6 +61,10 @@ class Interrupt(unittest.TestCase):
 
     def test_sigint_ends_manual_stepping_after_a_step(self):
         self.assertEqual(self.interrupt(STEPPING), "interrupted True True")
+
+    def test_the_message_names_the_signal(self):
+        self.assertEqual(self.interrupt(SAYS), "interrupted by SIGINT")
+        self.assertEqual(self.interrupt(SAYS, signal.SIGTERM), "interrupted by SIGTERM")
 
 
 if __name__ == "__main__":

@@ -78,6 +78,11 @@ TEST_F(MeshScene, BadScenesAreLocatedInTheScene) {
   expect_error(scene("file = \"m.obj\"\nscale = -2.0\n"), "s.toml", 5, "obstacles[0].scale", "a number > 0");
   expect_error(scene("file = \"m.obj\"\nside = \"inside\"\n"), "s.toml", 5, "obstacles[0].side", "\"both\"");
   expect_error(scene("file = \"m.obj\"\nradius_m = 0.1\n"), "s.toml", 5, "obstacles[0].radius_m", "file");
+  // A scale whose mesh cubes past the doubles (or below them) is refused at the scale, not as a degenerate triangle.
+  for (const char* scale : {"1e300", "1e101", "1e-300"})
+    expect_error(scene(std::string("file = \"m.obj\"\nscale = ") + scale + "\n"), "s.toml", 5, "obstacles[0].scale",
+                 "keeps the mesh's largest coordinate (1 in the file) within 1e-100 to 1e100 m once scaled");
+  EXPECT_EQ(load(scene("file = \"m.obj\"\nscale = 1e100\n")).obstacles[0].mesh->vertices[1][0], 1e100);
 }
 
 TEST_F(MeshScene, BadMeshFilesAreLocatedInTheMesh) {
