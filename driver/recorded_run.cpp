@@ -60,7 +60,7 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
   integrator->on_step = [&](const StepRecord& r) {
     if (record.step_ends) run.step_ends.push_back(r.t);
     if (record.on_step) record.on_step(*model, r.t, integrator->q(), integrator->v());
-    const double s = model->max_node_speed(integrator->v());
+    const double s = max_node_speed(*model, integrator->v());
     run.max_node_speed = std::max(run.max_node_speed, std::isfinite(s) ? s : std::numeric_limits<double>::infinity());
     if (record.progress) {
       const auto now = clock::now();

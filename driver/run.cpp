@@ -155,7 +155,7 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
     if (!metrics) return;
     const Vec& q = integrator->q();
     const Vec& v = integrator->v();
-    metrics->row({t, model->kinetic_energy(t, q, v, scratch), model->potential_energy(q), model->max_node_speed(v),
+    metrics->row({t, model->kinetic_energy(t, q, v, scratch), model->potential_energy(q), max_node_speed(*model, v),
                   double(iters), wall});
   };
   integrator->on_step = [&](const StepRecord& r) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "integrators/step_clock.h"
+#include "models/core/sliding_coordinates.h"
 
 namespace wl {
 
@@ -138,7 +139,8 @@ StepResult Integrator::finish_step(double t_new, double h, long nonlinear_iters,
   if (r.outcome != Outcome::ok) return r;
   t_ = t_new;
   ++stats_.steps;
-  if (dq_dp_.cols() > 0) model_->accept_step_sensitivities(sensitivity_keys_, q_, v_, dq_dp_, dv_dp_, h);
+  if (SlidingCoordinates* sliding = sliding_coordinates(*model_); sliding && dq_dp_.cols() > 0)
+    sliding->accept_step_sensitivities(sensitivity_keys_, q_, v_, dq_dp_, dv_dp_, h);
   model_->accept_step(t_, q_, v_, h);
   if (on_step) on_step({t_, h, static_cast<int>(nonlinear_iters), wall_s});
   return r;

@@ -352,7 +352,8 @@ void Assembly::add_mass_directional_product(const Vec& q, const Vec& dq, const V
   std::vector<double> ql, dql, ml;
   for (const TermPlan& plan : plans_) {
     const Term& term = *plan.term;
-    if (!term.provides_mass()) continue;
+    const PositionDependentMass* dependent = position_dependent_mass(term);
+    if (!term.provides_mass() || !dependent) continue;
     const int n = plan.n;
     ql.resize(n);
     dql.resize(n);
@@ -361,7 +362,7 @@ void Assembly::add_mass_directional_product(const Vec& q, const Vec& dq, const V
       auto s = term.stencil(e);
       gather_state(s, q, dq, constants, ql.data(), dql.data());
       std::fill(ml.begin(), ml.end(), 0.0);
-      term.mass_directional_derivative(e, ql.data(), dql.data(), ml.data());
+      dependent->mass_directional_derivative(e, ql.data(), dql.data(), ml.data());
       for (int a = 0; a < n; ++a) {
         if (!is_dof(s[a])) continue;
         for (int b = 0; b < n; ++b)

@@ -48,6 +48,10 @@ struct StepWeights {
   const SparseMatrix* constant_mass = nullptr;
 };
 
+// What only the yarn-level models offer (the largest node speed over positions
+// beside sliding coordinates, the derivative of the friction anchors) is a
+// separate capability: models/core/sliding_coordinates.h.
+//
 // State (docs/design.md §3.4): a model holds its history (friction anchors,
 // changed only by accept_step) and the auxiliaries of its last evaluation
 // (contact normals, friction's frozen F_u and F_n, changed only by evaluate).
@@ -122,12 +126,6 @@ class Model {
     return f;
   }
 
-  // Largest node speed ‖ẋ‖ [m/s]; the default reads v as consecutive 3-vectors.
-  virtual double max_node_speed(const Vec& v) const {
-    double m = 0.0;
-    for (Eigen::Index i = 0; i + 2 < v.size(); i += 3) m = std::max(m, v.segment<3>(i).norm());
-    return m;
-  }
   // Output frame for the writers at (t, q, v); friction's sliding state is that
   // of the last evaluation.
   virtual Frame frame(double t, const Vec& q, const Vec& v) const = 0;
@@ -149,19 +147,16 @@ class Model {
   // Adds ((∂M/∂q)·dq)·w at q into `out`; only models whose mass depends on q
   // (mass_depends_on_q()) add anything.
   virtual void mass_directional_product(const Vec& q, const Vec& dq, const Vec& w, Vec& out) const {}
-  // Carries the derivative of the model's history (friction anchors) over an
-  // accepted step of size h ending at (q, v), called before accept_step with
-  // the sensitivities there, S_q = ∂q/∂p and S_v = ∂v/∂p (one column per key;
-  // docs/models.md §9.2). The default: the history does not depend on p.
-  virtual void accept_step_sensitivities(const std::vector<std::string>& /*keys*/, const Vec& /*q*/, const Vec& /*v*/,
-                                         const Eigen::MatrixXd& /*dq_dp*/, const Eigen::MatrixXd& /*dv_dp*/,
-                                         double /*h*/) {}
   // Short facts for `weavelab info` and the run summary (name -> value).
   virtual std::map<std::string, std::string> describe() const = 0;
 };
 
 // Prepares `out` with pattern-shaped matrices and a sized force vector.
 void allocate_evaluation(const Model& model, Evaluation& out);
+// Largest node speed ‖ẋ‖ [m/s]: over the nodes' positions for a model with
+// sliding coordinates (SlidingCoordinates::max_node_speed), otherwise v read as
+// consecutive 3-vectors.
+double max_node_speed(const Model& model, const Vec& v);
 // A and (when r is given) r of StepWeights from an evaluation holding f, ∂f/∂q,
 // ∂f/∂v and (unless w.constant_mass is given) M: what Model::evaluate_step
 // forms in one pass.

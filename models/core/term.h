@@ -101,21 +101,32 @@ class Term {
   // ∂M/∂p of one element (n×n, column-major, added into dmdp) for terms that
   // provide mass; forward sensitivities need it for density (docs/models.md §9.2).
   virtual void mass_parameter_derivative(int /*e*/, int /*k*/, const double* /*q*/, double* /*dmdp*/) const {}
-  // Directional derivative of the element's mass block, (∂M/∂q)·dq (n×n, added
-  // into dm), for terms whose mass depends on q (docs/models.md §9.2).
-  virtual void mass_directional_derivative(int /*e*/, const double* /*q*/, const double* /*dq*/, double* /*dm*/) const {
-  }
+  // A term whose mass block depends on q offers its derivative through the
+  // separate capability PositionDependentMass below.
 
-  // Frozen inputs (docs/models.md §5.4, §3.6.1): the node whose contact normal
-  // force F_n element e reads (−1: none), and the element force's derivatives
-  // with respect to that F_n and to F_u, the stage-0 force on the element's
-  // first stencil DoF (stage-1 terms only), at local (q, v): n values each,
-  // added into dfdFn and dfdFu. A model that differentiates F_n and F_u chains
-  // these with ∂F_n/∂q and ∂F_u/∂q.
-  virtual int normal_force_node(int /*e*/) const { return -1; }
-  virtual void frozen_input_derivatives(int /*e*/, const double* /*q*/, const double* /*v*/, double* /*dfdFn*/,
-                                        double* /*dfdFu*/) const {}
+  // Terms that read frozen inputs (F_n, F_u) offer their derivatives through a
+  // separate capability of the yarn model: models/yarn/frozen_input_reader.h.
 };
+
+// A capability of the mass terms whose block depends on q (the yarn models'
+// segment inertia with sliding coordinates, docs/models.md §3.1.1): such a term
+// derives from this interface besides Term, and the assembly asks for it with
+// position_dependent_mass(term) where forward sensitivities need ((∂M/∂q)·dq)·w
+// (Model::mass_directional_product, docs/models.md §9.2). Every other mass
+// block is constant in q.
+class PositionDependentMass {
+ public:
+  virtual ~PositionDependentMass() = default;
+  // Directional derivative of element e's mass block, (∂M/∂q)·dq (n×n,
+  // column-major, added into dm), at local q.
+  virtual void mass_directional_derivative(int e, const double* q, const double* dq, double* dm) const = 0;
+};
+
+// The term's PositionDependentMass capability; null for a term whose mass (if
+// any) does not depend on q.
+inline const PositionDependentMass* position_dependent_mass(const Term& term) {
+  return dynamic_cast<const PositionDependentMass*>(&term);
+}
 
 // Helper base for terms whose elements all have N local DoFs: stores stencils
 // and exposes fixed-size Eigen views so element code reads like the equations.

@@ -108,179 +108,212 @@ void FemModel::build() {
   finalize();
 }
 
-// The terms from material_ (docs/models.md §6), in the order the assembly keeps.
+// The terms from material_ (docs/models.md §6), in the order the assembly keeps;
+// each add_* builds one term when the scene turns it on.
 void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
-  const int nv = mesh_.num_vertices(), nt = mesh_.num_triangles();
-  const std::vector<TriangleRest>& rest = rest_;
-  // Mass: always present (no other inertia in the FEM), lumped (docs/models.md §6.6): ρ_A·A/3 per
-  // vertex and triangle, or with [fem] yarn_node_mass the total ρ_A·ΣA shared in the proportions of
-  // the yarn level's node masses, each vertex's share split evenly over its triangles.
-  vertex_mass_.assign(nv, 0.0);
-  {
-    std::vector<double> share;  // yarn_node_mass: each vertex's mass per incident triangle [kg]
-    if (scene_.fem.yarn_node_mass) {
-      const std::vector<double> yarn = yarn_node_masses(scene_);
-      double area = 0, yarn_total = 0;
-      for (const TriangleRest& r : rest) area += r.area;
-      for (double m : yarn) yarn_total += m;
-      std::vector<int> incident(nv, 0);
-      for (const auto& tri : mesh_.triangles)
-        for (int v : tri) ++incident[v];
-      share.resize(nv);
-      for (int v = 0; v < nv; ++v)
-        share[v] = material_.areal_density_kg_per_m2 * area * yarn[v] / yarn_total / incident[v];
-    }
-    auto t = std::make_unique<LumpedMassTerm>();
-    for (int e = 0; e < nt; ++e) {
-      const auto& tri = mesh_.triangles[e];
-      const double third = material_.areal_density_kg_per_m2 * rest[e].area / 3.0;
-      const std::array<double, 3> m = share.empty()
-                                          ? std::array<double, 3>{third, third, third}
-                                          : std::array<double, 3>{share[tri[0]], share[tri[1]], share[tri[2]]};
-      t->add(triangle_stencil(tri), m);
-      t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
-      for (int k = 0; k < 3; ++k) vertex_mass_[tri[k]] += m[k];
-    }
-    terms.push_back(std::move(t));
-  }
   const TermSwitches& on = scene_.terms;
-  if (on.stretch) {
-    auto t = std::make_unique<WarpWeftStretchTerm>(stretch_law(material_));
-    for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
-    terms.push_back(std::move(t));
-  }
-  if (on.shear) {
-    std::unique_ptr<InPlaneShearTerm> t;
-    if (material_.shear_knots_rad.empty()) {
-      t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
-                                             material_.shear_lock_exponent);
-    } else {  // the spline law (docs/models.md §6.4.1); an absent knot value is k_sh
-      std::vector<double> values;
-      for (size_t i = 0; i < material_.shear_knots_rad.size(); ++i)
-        values.push_back(material_.shear_knot_N_per_m[i] > 0 ? material_.shear_knot_N_per_m[i]
-                                                             : material_.shear_N_per_m);
-      t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
-                                             material_.shear_lock_exponent, material_.shear_knots_rad, values);
-    }
-    for (int e = 0; e < nt; ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest[e]);
-    terms.push_back(std::move(t));
-  }
-  if (on.stretch && scene_.fem.border_strip) {
-    // Border edges (one triangle): the outer half spacing of the border yarns (terms/border_stretch.h).
-    std::map<std::pair<int, int>, int> count;
+  add_mass(terms);  // always: the FEM has no other inertia
+  if (on.stretch) add_stretch(terms);
+  if (on.shear) add_shear(terms);
+  if (on.stretch && scene_.fem.border_strip) add_border_stretch(terms);
+  if (on.bending && scene_.fem.grid_line_bending) add_grid_line_bending(terms);
+  else if (on.bending && !hinges_.empty()) add_hinge_bending(terms);
+  if (on.gravity) add_gravity(terms);
+  if (on.wind) add_wind(terms);
+  if (scene_.yarn_viscosity_Pa_s > 0.0) add_damping(terms);
+  if (on.handles && !scene_.handles.empty()) add_handles(terms);
+  if (!scene_.obstacles.empty()) add_obstacles(terms);
+  if (scene_.self_contact.enabled) add_self_contact(terms);
+}
+
+// Mass, lumped (docs/models.md §6.6): ρ_A·A/3 per vertex and triangle, or with
+// [fem] yarn_node_mass the total ρ_A·ΣA shared in the proportions of the yarn
+// level's node masses, each vertex's share split evenly over its triangles.
+// Sets vertex_mass_.
+void FemModel::add_mass(std::vector<std::unique_ptr<Term>>& terms) {
+  const int nv = mesh_.num_vertices(), nt = mesh_.num_triangles();
+  vertex_mass_.assign(nv, 0.0);
+  std::vector<double> share;  // yarn_node_mass: each vertex's mass per incident triangle [kg]
+  if (scene_.fem.yarn_node_mass) {
+    const std::vector<double> yarn = yarn_node_masses(scene_);
+    double area = 0, yarn_total = 0;
+    for (const TriangleRest& r : rest_) area += r.area;
+    for (double m : yarn) yarn_total += m;
+    std::vector<int> incident(nv, 0);
     for (const auto& tri : mesh_.triangles)
-      for (int k = 0; k < 3; ++k) ++count[std::minmax(tri[k], tri[(k + 1) % 3])];
-    auto t = std::make_unique<BorderStretchTerm>(material_.warp_stretch_N_per_m, material_.weft_stretch_N_per_m,
-                                                 0.5 * scene_.spacing_m);
-    for (const auto& [edge, n] : count) {
-      if (n != 1) continue;
-      const Vec2 d = mesh_.uv[edge.second] - mesh_.uv[edge.first];
-      t->add({3 * edge.first, 3 * edge.first + 1, 3 * edge.first + 2, 3 * edge.second, 3 * edge.second + 1,
-              3 * edge.second + 2},
-             d.norm(), std::abs(d.x()) >= std::abs(d.y()));
-    }
-    terms.push_back(std::move(t));
+      for (int v : tri) ++incident[v];
+    share.resize(nv);
+    for (int v = 0; v < nv; ++v)
+      share[v] = material_.areal_density_kg_per_m2 * area * yarn[v] / yarn_total / incident[v];
   }
-  if (on.bending && scene_.fem.grid_line_bending) {
-    // Each interior vertex of a grid line bends like a yarn (terms/grid_line_bending.h); a line
-    // stands for the cloth halfway to its neighbours, so a border line for half a spacing.
-    const int na = static_cast<int>(mesh_.grid_i.size()), nb = static_cast<int>(mesh_.grid_j.size());
-    auto t = std::make_unique<GridLineBendingTerm>();
-    auto width = [&](const std::vector<int>& lines, int k) {
-      const double prev = k > 0 ? lines[k] - lines[k - 1] : 0,
-                   next = k + 1 < (int)lines.size() ? lines[k + 1] - lines[k] : 0;
-      return 0.5 * (prev + next) * scene_.spacing_m;
-    };
-    auto add_line_element = [&](int mid, int next, int prev, double k, double w, const char* key) {
-      std::array<int, 9> s;
-      for (int c = 0; c < 3; ++c) {
-        s[c] = 3 * mid + c;
-        s[3 + c] = 3 * next + c;
-        s[6 + c] = 3 * prev + c;
-      }
-      t->add(s, k * w, (mesh_.uv[next] - mesh_.uv[mid]).norm());
-      t->tag_last(key, k);
-    };
-    for (int b = 0; b < nb; ++b)  // warp lines, along u
-      for (int a = 1; a + 1 < na; ++a)
-        add_line_element(mesh_.grid_vertex(a, b), mesh_.grid_vertex(a + 1, b), mesh_.grid_vertex(a - 1, b),
-                         material_.warp_bending_N_m, width(mesh_.grid_j, b), kFemWarpBending);
-    for (int a = 0; a < na; ++a)  // weft lines, along v
-      for (int b = 1; b + 1 < nb; ++b)
-        add_line_element(mesh_.grid_vertex(a, b), mesh_.grid_vertex(a, b + 1), mesh_.grid_vertex(a, b - 1),
-                         material_.weft_bending_N_m, width(mesh_.grid_i, a), kFemWeftBending);
-    terms.push_back(std::move(t));
-  } else if (on.bending && !hinges_.empty()) {
-    auto t = std::make_unique<HingeBendingTerm>(material_.warp_bending_N_m, material_.weft_bending_N_m,
-                                                material_.diagonal_bending_N_m);
-    for (const Hinge& h : hinges_) {
-      std::array<int, 12> s;
-      for (int k = 0; k < 4; ++k)
-        for (int c = 0; c < 3; ++c) s[3 * k + c] = 3 * h.v[k] + c;
-      t->add(s, mesh_.uv[h.v[1]] - mesh_.uv[h.v[0]], rest[h.tri0].area + rest[h.tri1].area);
-    }
-    terms.push_back(std::move(t));
+  auto t = std::make_unique<LumpedMassTerm>();
+  for (int e = 0; e < nt; ++e) {
+    const auto& tri = mesh_.triangles[e];
+    const double third = material_.areal_density_kg_per_m2 * rest_[e].area / 3.0;
+    const std::array<double, 3> m = share.empty() ? std::array<double, 3>{third, third, third}
+                                                  : std::array<double, 3>{share[tri[0]], share[tri[1]], share[tri[2]]};
+    t->add(triangle_stencil(tri), m);
+    t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
+    for (int k = 0; k < 3; ++k) vertex_mass_[tri[k]] += m[k];
   }
+  terms.push_back(std::move(t));
+}
+
+// Warp/weft stretch on every triangle (docs/models.md §6.3).
+void FemModel::add_stretch(std::vector<std::unique_ptr<Term>>& terms) const {
+  auto t = std::make_unique<WarpWeftStretchTerm>(stretch_law(material_));
+  for (int e = 0; e < mesh_.num_triangles(); ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest_[e]);
+  terms.push_back(std::move(t));
+}
+
+// In-plane shear with its lock, or the spline law (docs/models.md §6.4, §6.4.1).
+void FemModel::add_shear(std::vector<std::unique_ptr<Term>>& terms) const {
+  std::unique_ptr<InPlaneShearTerm> t;
+  if (material_.shear_knots_rad.empty()) {
+    t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
+                                           material_.shear_lock_exponent);
+  } else {  // an absent knot value is k_sh
+    std::vector<double> values;
+    for (size_t i = 0; i < material_.shear_knots_rad.size(); ++i)
+      values.push_back(material_.shear_knot_N_per_m[i] > 0 ? material_.shear_knot_N_per_m[i] : material_.shear_N_per_m);
+    t = std::make_unique<InPlaneShearTerm>(material_.shear_N_per_m, material_.shear_lock_angle_rad,
+                                           material_.shear_lock_exponent, material_.shear_knots_rad, values);
+  }
+  for (int e = 0; e < mesh_.num_triangles(); ++e) t->add(triangle_stencil(mesh_.triangles[e]), rest_[e]);
+  terms.push_back(std::move(t));
+}
+
+// Border edges (one triangle): the outer half spacing of the border yarns (terms/border_stretch.h).
+void FemModel::add_border_stretch(std::vector<std::unique_ptr<Term>>& terms) const {
+  std::map<std::pair<int, int>, int> count;
+  for (const auto& tri : mesh_.triangles)
+    for (int k = 0; k < 3; ++k) ++count[std::minmax(tri[k], tri[(k + 1) % 3])];
+  auto t = std::make_unique<BorderStretchTerm>(material_.warp_stretch_N_per_m, material_.weft_stretch_N_per_m,
+                                               0.5 * scene_.spacing_m);
+  for (const auto& [edge, n] : count) {
+    if (n != 1) continue;
+    const Vec2 d = mesh_.uv[edge.second] - mesh_.uv[edge.first];
+    t->add({3 * edge.first, 3 * edge.first + 1, 3 * edge.first + 2, 3 * edge.second, 3 * edge.second + 1,
+            3 * edge.second + 2},
+           d.norm(), std::abs(d.x()) >= std::abs(d.y()));
+  }
+  terms.push_back(std::move(t));
+}
+
+// Each interior vertex of a grid line bends like a yarn (terms/grid_line_bending.h); a line
+// stands for the cloth halfway to its neighbours, so a border line for half a spacing.
+void FemModel::add_grid_line_bending(std::vector<std::unique_ptr<Term>>& terms) const {
+  const int na = static_cast<int>(mesh_.grid_i.size()), nb = static_cast<int>(mesh_.grid_j.size());
+  auto t = std::make_unique<GridLineBendingTerm>();
+  auto width = [&](const std::vector<int>& lines, int k) {
+    const double prev = k > 0 ? lines[k] - lines[k - 1] : 0,
+                 next = k + 1 < (int)lines.size() ? lines[k + 1] - lines[k] : 0;
+    return 0.5 * (prev + next) * scene_.spacing_m;
+  };
+  auto add_line_element = [&](int mid, int next, int prev, double k, double w, const char* key) {
+    std::array<int, 9> s;
+    for (int c = 0; c < 3; ++c) {
+      s[c] = 3 * mid + c;
+      s[3 + c] = 3 * next + c;
+      s[6 + c] = 3 * prev + c;
+    }
+    t->add(s, k * w, (mesh_.uv[next] - mesh_.uv[mid]).norm());
+    t->tag_last(key, k);
+  };
+  for (int b = 0; b < nb; ++b)  // warp lines, along u
+    for (int a = 1; a + 1 < na; ++a)
+      add_line_element(mesh_.grid_vertex(a, b), mesh_.grid_vertex(a + 1, b), mesh_.grid_vertex(a - 1, b),
+                       material_.warp_bending_N_m, width(mesh_.grid_j, b), kFemWarpBending);
+  for (int a = 0; a < na; ++a)  // weft lines, along v
+    for (int b = 1; b + 1 < nb; ++b)
+      add_line_element(mesh_.grid_vertex(a, b), mesh_.grid_vertex(a, b + 1), mesh_.grid_vertex(a, b - 1),
+                       material_.weft_bending_N_m, width(mesh_.grid_i, a), kFemWeftBending);
+  terms.push_back(std::move(t));
+}
+
+// Dihedral-angle bending on every interior edge (docs/models.md §6.5).
+void FemModel::add_hinge_bending(std::vector<std::unique_ptr<Term>>& terms) const {
+  auto t = std::make_unique<HingeBendingTerm>(material_.warp_bending_N_m, material_.weft_bending_N_m,
+                                              material_.diagonal_bending_N_m);
+  for (const Hinge& h : hinges_) {
+    std::array<int, 12> s;
+    for (int k = 0; k < 4; ++k)
+      for (int c = 0; c < 3; ++c) s[3 * k + c] = 3 * h.v[k] + c;
+    t->add(s, mesh_.uv[h.v[1]] - mesh_.uv[h.v[0]], rest_[h.tri0].area + rest_[h.tri1].area);
+  }
+  terms.push_back(std::move(t));
+}
+
+// Gravity on the lumped vertex masses (after add_mass); none for g = 0.
+void FemModel::add_gravity(std::vector<std::unique_ptr<Term>>& terms) const {
   const Vec3 g(scene_.gravity_m_per_s2[0], scene_.gravity_m_per_s2[1], scene_.gravity_m_per_s2[2]);
-  if (on.gravity && g.norm() > 0) {
-    auto t = std::make_unique<NodalGravityTerm>(g);
-    for (int i = 0; i < nv; ++i) {
-      t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
-      t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
-    }
-    terms.push_back(std::move(t));
+  if (!(g.norm() > 0)) return;
+  auto t = std::make_unique<NodalGravityTerm>(g);
+  for (int i = 0; i < mesh_.num_vertices(); ++i) {
+    t->add({3 * i, 3 * i + 1, 3 * i + 2}, vertex_mass_[i]);
+    t->tag_last(kFemArealDensity, material_.areal_density_kg_per_m2);
   }
-  // Wind: the yarn model's term and parameters, on every triangle (docs/models.md §3.9, §6.6).
+  terms.push_back(std::move(t));
+}
+
+// Wind: the yarn model's term and parameters, on every triangle (docs/models.md §3.9, §6.6);
+// none without air density or drag.
+void FemModel::add_wind(std::vector<std::unique_ptr<Term>>& terms) const {
+  if (!(scene_.air_density_kg_per_m3 > 0 || scene_.wind_drag_Ns_per_m3 > 0)) return;
   const Vec3 wind(scene_.wind_velocity_m_per_s[0], scene_.wind_velocity_m_per_s[1], scene_.wind_velocity_m_per_s[2]);
-  if (on.wind && (scene_.air_density_kg_per_m3 > 0 || scene_.wind_drag_Ns_per_m3 > 0)) {
-    auto t = std::make_unique<WindTerm>(wind, scene_.air_density_kg_per_m3, scene_.wind_drag_Ns_per_m3);
-    for (const auto& tri : mesh_.triangles) t->add(triangle_stencil(tri));
-    terms.push_back(std::move(t));
-  }
-  // Yarn-internal stretch damping on the warp and weft edges (docs/models.md §3.12):
-  // an edge of length kL along the warp carries k yarns of coefficient ηπR²/(kL).
-  if (scene_.yarn_viscosity_Pa_s > 0.0) {
-    const double c = yarn_damper_coefficient(scene_.yarn_viscosity_Pa_s, scene_.radius_m, scene_.spacing_m);
-    auto t = std::make_unique<YarnDamperTerm>();
-    std::set<std::pair<int, int>> edges;
-    for (const auto& tri : mesh_.triangles)
-      for (int k = 0; k < 3; ++k) {
-        const int a = std::min(tri[k], tri[(k + 1) % 3]), b = std::max(tri[k], tri[(k + 1) % 3]);
-        const Vec2 d = mesh_.uv[b] - mesh_.uv[a];
-        const bool along_yarn = std::abs(d.x()) <= 1e-9 * d.norm() || std::abs(d.y()) <= 1e-9 * d.norm();
-        if (along_yarn && edges.insert({a, b}).second)
-          t->add({3 * a, 3 * a + 1, 3 * a + 2, 3 * b, 3 * b + 1, 3 * b + 2}, c);
-      }
-    terms.push_back(std::move(t));
-  }
-  if (on.handles && !scene_.handles.empty()) {
-    auto t = std::make_unique<HandleSpringTerm>();
-    for (const Handle& h : scene_.handles) {
-      const int v = vertex_of_node(h.node);
-      t->add({3 * v, 3 * v + 1, 3 * v + 2}, q0_.segment<3>(3 * v), h);
+  auto t = std::make_unique<WindTerm>(wind, scene_.air_density_kg_per_m3, scene_.wind_drag_Ns_per_m3);
+  for (const auto& tri : mesh_.triangles) t->add(triangle_stencil(tri));
+  terms.push_back(std::move(t));
+}
+
+// Yarn-internal stretch damping on the warp and weft edges (docs/models.md §3.12):
+// an edge of length kL along the warp carries k yarns of coefficient ηπR²/(kL).
+void FemModel::add_damping(std::vector<std::unique_ptr<Term>>& terms) const {
+  const double c = yarn_damper_coefficient(scene_.yarn_viscosity_Pa_s, scene_.radius_m, scene_.spacing_m);
+  auto t = std::make_unique<YarnDamperTerm>();
+  std::set<std::pair<int, int>> edges;
+  for (const auto& tri : mesh_.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = std::min(tri[k], tri[(k + 1) % 3]), b = std::max(tri[k], tri[(k + 1) % 3]);
+      const Vec2 d = mesh_.uv[b] - mesh_.uv[a];
+      const bool along_yarn = std::abs(d.x()) <= 1e-9 * d.norm() || std::abs(d.y()) <= 1e-9 * d.norm();
+      if (along_yarn && edges.insert({a, b}).second)
+        t->add({3 * a, 3 * a + 1, 3 * a + 2, 3 * b, 3 * b + 1, 3 * b + 2}, c);
     }
-    terms.push_back(std::move(t));
+  terms.push_back(std::move(t));
+}
+
+// A handle spring at each handle's vertex (models/common/handle_spring.h).
+void FemModel::add_handles(std::vector<std::unique_ptr<Term>>& terms) const {
+  auto t = std::make_unique<HandleSpringTerm>();
+  for (const Handle& h : scene_.handles) {
+    const int v = vertex_of_node(h.node);
+    t->add({3 * v, 3 * v + 1, 3 * v + 2}, q0_.segment<3>(3 * v), h);
   }
-  // Node–obstacle contact and friction at every vertex, segment–edge contact on
-  // every triangle edge (docs/models.md §3.11), node spacing stride·L.
-  if (!scene_.obstacles.empty()) {
-    std::vector<int> node_x;
-    for (int i = 0; i < nv; ++i) node_x.push_back(3 * i);
-    const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
-    const ObstacleContactRule rule = obstacle_contact_rule(scene_, scene_.fem.stride * scene_.spacing_m, m);
-    std::set<std::array<int, 2>> edges;  // the triangles' edges, each once
-    for (const auto& t : mesh_.triangles)
-      for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
-    obstacles_ = ObstacleContact(scene_, rule, node_x, {edges.begin(), edges.end()}, q0_, terms);
-  }
-  // Cloth–cloth contact over the mesh's triangles (docs/models.md §3.11.7).
-  if (scene_.self_contact.enabled) {
-    ContactSurface surface{mesh_.triangles, {}};
-    for (int i = 0; i < nv; ++i) surface.node_x.push_back(3 * i);
-    const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
-    const double l = scene_.fem.stride * scene_.spacing_m;
-    add_self_contact(scene_, self_contact_rule(scene_, l, m), l, surface, q0_, terms);
-  }
+  terms.push_back(std::move(t));
+}
+
+// Node–obstacle contact and friction at every vertex, segment–edge contact on
+// every triangle edge (docs/models.md §3.11), node spacing stride·L. Sets obstacles_.
+void FemModel::add_obstacles(std::vector<std::unique_ptr<Term>>& terms) {
+  const int nv = mesh_.num_vertices();
+  std::vector<int> node_x;
+  for (int i = 0; i < nv; ++i) node_x.push_back(3 * i);
+  const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
+  const ObstacleContactRule rule = obstacle_contact_rule(scene_, scene_.fem.stride * scene_.spacing_m, m);
+  std::set<std::array<int, 2>> edges;  // the triangles' edges, each once
+  for (const auto& t : mesh_.triangles)
+    for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  obstacles_ = ObstacleContact(scene_, rule, node_x, {edges.begin(), edges.end()}, q0_, terms);
+}
+
+// Cloth–cloth contact over the mesh's triangles (docs/models.md §3.11.7).
+void FemModel::add_self_contact(std::vector<std::unique_ptr<Term>>& terms) const {
+  ContactSurface surface{mesh_.triangles, {}};
+  for (int i = 0; i < mesh_.num_vertices(); ++i) surface.node_x.push_back(3 * i);
+  const double m = *std::max_element(vertex_mass_.begin(), vertex_mass_.end());
+  const double l = scene_.fem.stride * scene_.spacing_m;
+  wl::add_self_contact(scene_, self_contact_rule(scene_, l, m), l, surface, q0_, terms);
 }
 
 void FemModel::set_material(const FemMaterial& material) {

@@ -66,7 +66,21 @@ class FemModel : public TermModel {
 
  private:
   void build();
-  void add_terms(std::vector<std::unique_ptr<Term>>& terms);  // from material_; sets vertex_mass_, obstacles_
+  // The terms from material_ into `terms` (terms_, or set_material's
+  // replacements); each add_* builds one term when the scene turns it on.
+  void add_terms(std::vector<std::unique_ptr<Term>>& terms);
+  void add_mass(std::vector<std::unique_ptr<Term>>& terms);  // sets vertex_mass_
+  void add_stretch(std::vector<std::unique_ptr<Term>>& terms) const;
+  void add_shear(std::vector<std::unique_ptr<Term>>& terms) const;
+  void add_border_stretch(std::vector<std::unique_ptr<Term>>& terms) const;
+  void add_grid_line_bending(std::vector<std::unique_ptr<Term>>& terms) const;
+  void add_hinge_bending(std::vector<std::unique_ptr<Term>>& terms) const;
+  void add_gravity(std::vector<std::unique_ptr<Term>>& terms) const;  // reads vertex_mass_
+  void add_wind(std::vector<std::unique_ptr<Term>>& terms) const;
+  void add_damping(std::vector<std::unique_ptr<Term>>& terms) const;
+  void add_handles(std::vector<std::unique_ptr<Term>>& terms) const;
+  void add_obstacles(std::vector<std::unique_ptr<Term>>& terms);  // sets obstacles_
+  void add_self_contact(std::vector<std::unique_ptr<Term>>& terms) const;
 
   Scene scene_;
   FemMesh mesh_;

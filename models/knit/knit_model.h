@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "models/core/sliding_coordinates.h"
 #include "models/core/term_model.h"
 #include "models/knit/knit_graph.h"
 #include "models/scene/scene.h"
@@ -33,7 +34,7 @@ inline double knit_compression_cutoff(const KnitLayout& L, double radius) {
   return 2.0 * radius + 0.5 * std::min(L.wale_spacing, L.course_spacing);
 }
 
-class KnitModel : public TermModel {
+class KnitModel : public TermModel, public SlidingCoordinates {
  public:
   // The whole cloth of a knit scene (scene.knit set), at the tiled rest shape.
   explicit KnitModel(const Scene& scene);
@@ -47,6 +48,7 @@ class KnitModel : public TermModel {
   std::string name() const override { return "yarn"; }
   bool mass_depends_on_q() const override { return scene_.sliding; }
   Frame frame(double t, const Vec& q, const Vec& v) const override;
+  // SlidingCoordinates: the nodes' positions (no friction anchors: no history).
   double max_node_speed(const Vec& v) const override;
   // A yarn segment whose sliding coordinates meet or cross (Δu ≤ 0).
   std::string invalid_state(const Vec& q) const override;

@@ -3,15 +3,28 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "models/yarn/frozen_input_reader.h"
+
 namespace wl {
+namespace {
+
+// Each term's FrozenInputReader capability, null for a term that reads no frozen input.
+std::vector<const FrozenInputReader*> frozen_input_readers(const std::vector<std::unique_ptr<Term>>& terms) {
+  std::vector<const FrozenInputReader*> readers;
+  for (const auto& term : terms) readers.push_back(frozen_input_reader(*term));
+  return readers;
+}
+
+}  // namespace
 
 ContactChain::ContactChain(const std::vector<std::unique_ptr<Term>>& terms, const ContactNormals& normals) {
   const auto& grad = normals.gradient();
   nodes_.resize(grad.size());
   std::vector<int> stage0_rows;
+  const std::vector<const FrozenInputReader*> reader_of = frozen_input_readers(terms);
   for (int t = 0; t < static_cast<int>(terms.size()); ++t)
-    for (int e = 0; e < terms[t]->num_elements(); ++e) {
-      const int node = terms[t]->normal_force_node(e);
+    for (int e = 0; reader_of[t] && e < terms[t]->num_elements(); ++e) {
+      const int node = reader_of[t]->normal_force_node(e);
       if (node < 0 || grad[node].dof.empty()) continue;
       Reader r{t, e, node, {}};
       NodeBlock& b = nodes_[node];
@@ -132,6 +145,7 @@ void ContactChain::add_jacobians(const TermModel& model, const Vec& q, const Vec
   if (!req.dfdq && !req.dfdv) return;
   if (req.filter == TermFilter::explicit_only || req.filter == TermFilter::mass_only) return;
   const auto& terms = model.terms();
+  const std::vector<const FrozenInputReader*> reader_of = frozen_input_readers(terms);
   const auto& grad = normals.gradient();
   std::vector<double> lq, lv, dfn, dfu;
   std::vector<std::vector<double>> row_weight(nodes_.size());
@@ -142,7 +156,7 @@ void ContactChain::add_jacobians(const TermModel& model, const Vec& q, const Vec
     const int n = term.stencil_size();
     lq.assign(n, 0.0), lv.assign(n, 0.0), dfn.assign(n, 0.0), dfu.assign(n, 0.0);
     model.gather_local(term, r.element, q, v, lq.data(), lv.data());
-    term.frozen_input_derivatives(r.element, lq.data(), lv.data(), dfn.data(), dfu.data());
+    reader_of[r.term]->frozen_input_derivatives(r.element, lq.data(), lv.data(), dfn.data(), dfu.data());
     std::vector<double>& w = row_weight[r.node];
     w.resize(nodes_[r.node].rows.size(), 0.0);
     for (int a = 0; a < n; ++a)
@@ -180,6 +194,7 @@ void ContactChain::add_jacobians(const TermModel& model, const Vec& q, const Vec
 bool ContactChain::add_parameter_derivative(const TermModel& model, const std::string& key, const Vec& q, const Vec& v,
                                             const std::vector<double>& dfn_dp, Vec& dfdp) const {
   const auto& terms = model.terms();
+  const std::vector<const FrozenInputReader*> reader_of = frozen_input_readers(terms);
   std::vector<double> lq, lv, dfn, dfu;
   // ∂F_u/∂p: the stage-0 part of ∂f/∂p on the DoF (the reader's own ∂F/∂p removed).
   std::vector<double> dfu_dp(tangential_.size(), 0.0);
@@ -196,7 +211,7 @@ bool ContactChain::add_parameter_derivative(const TermModel& model, const std::s
     if (dfn_dp[r.node] == 0.0 && dfu_p == 0.0) continue;
     lq.assign(n, 0.0), lv.assign(n, 0.0), dfn.assign(n, 0.0), dfu.assign(n, 0.0);
     model.gather_local(term, r.element, q, v, lq.data(), lv.data());
-    term.frozen_input_derivatives(r.element, lq.data(), lv.data(), dfn.data(), dfu.data());
+    reader_of[r.term]->frozen_input_derivatives(r.element, lq.data(), lv.data(), dfn.data(), dfu.data());
     const auto s = term.stencil(r.element);
     for (int a = 0; a < n; ++a)
       if (is_dof(s[a])) {

@@ -11,6 +11,7 @@
 #include "models/common/wind.h"
 #include "models/common/yarn_damper.h"
 #include "models/scene/parameter_keys.h"
+#include "models/yarn/frozen_input_reader.h"
 #include "models/yarn/terms/bending.h"
 #include "models/yarn/terms/friction_cirio.h"
 #include "models/yarn/terms/friction_gong.h"
@@ -412,7 +413,8 @@ std::vector<std::string> YarnModel::asymmetric_terms() const {
   std::vector<std::string> names = TermModel::asymmetric_terms();
   if (!chain_) return names;
   for (const auto& term : terms_)
-    if (term->num_elements() > 0 && term->normal_force_node(0) >= 0 &&
+    if (const FrozenInputReader* reader = frozen_input_reader(*term);
+        reader && term->num_elements() > 0 && reader->normal_force_node(0) >= 0 &&
         std::find(names.begin(), names.end(), term->name()) == names.end())
       names.push_back(term->name());
   return names;

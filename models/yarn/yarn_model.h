@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "models/common/obstacle_contact.h"
+#include "models/core/sliding_coordinates.h"
 #include "models/core/term_model.h"
 #include "models/scene/scene.h"
 #include "models/yarn/contact_chain.h"
@@ -14,13 +15,14 @@
 
 namespace wl {
 
-class YarnModel : public TermModel {
+class YarnModel : public TermModel, public SlidingCoordinates {
  public:
   explicit YarnModel(const Scene& scene);
   std::unique_ptr<Model> clone() const override { return std::make_unique<YarnModel>(*this); }
   std::string name() const override { return "yarn"; }
   bool mass_depends_on_q() const override { return scene_.sliding; }
   Frame frame(double t, const Vec& q, const Vec& v) const override;
+  // SlidingCoordinates: the nodes' positions, and the friction anchors' dū/dp below.
   double max_node_speed(const Vec& v) const override;
   // Sliding coordinates of neighbouring crossings that meet or cross (Δu ≤ 0 on
   // a segment, docs/models.md §2.2, §5.10), naming the yarn and the crossings.

@@ -5,6 +5,8 @@
 #include <random>
 #include <sstream>
 
+#include "models/yarn/frozen_input_reader.h"
+
 namespace wl::test {
 namespace {
 
@@ -203,15 +205,21 @@ FdReport check_frozen_input_derivative(const std::function<std::unique_ptr<Term>
   const std::unique_ptr<Term> term = make(a), hi = make(a + h), lo = make(a - h);
   const int n = term->stencil_size();
   const std::string label = input == 0 ? "df/dF_n" : "df/dF_u";
+  const FrozenInputReader* reader = frozen_input_reader(*term);
+  if (!reader) {
+    rep.ok = false;
+    rep.detail += term->name() + ": reads no frozen input (not a FrozenInputReader)\n";
+    return rep;
+  }
   double largest = 0.0;
   for (size_t s = 0; s < states.size(); ++s)
     largest = std::max(largest, check_force_derivative(
                                     *term, *hi, *lo, h, e, states, opt, label,
                                     [&](const LocalState& st, double* out) {
                                       std::vector<double> other(n, 0.0);
-                                      term->frozen_input_derivatives(e, st.q.data(), st.v.data(),
-                                                                     input == 0 ? out : other.data(),
-                                                                     input == 0 ? other.data() : out);
+                                      reader->frozen_input_derivatives(e, st.q.data(), st.v.data(),
+                                                                       input == 0 ? out : other.data(),
+                                                                       input == 0 ? other.data() : out);
                                     },
                                     rep, s));
   if (!(largest > opt.floor)) {

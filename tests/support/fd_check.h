@@ -61,7 +61,8 @@ FdReport check_parameter_derivative(const std::function<std::unique_ptr<Term>(do
                                     int element, const std::vector<LocalState>& states, const FdOptions& opt = {});
 
 // Derivatives of a term's element with respect to its frozen inputs
-// (Term::frozen_input_derivatives; input 0 = F_n, 1 = F_u) against central
+// (FrozenInputReader::frozen_input_derivatives, models/yarn/frozen_input_reader.h;
+// input 0 = F_n, 1 = F_u; a term without that capability fails) against central
 // differences of the force in that input, with a relative step: `make(a)`
 // builds the term with element `element` prepared at input value a (≠ 0). The
 // derivative must not be zero at every state.

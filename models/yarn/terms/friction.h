@@ -9,10 +9,11 @@
 
 #include "models/core/term.h"
 #include "models/scene/parameter_keys.h"
+#include "models/yarn/frozen_input_reader.h"
 
 namespace wl {
 
-class FrictionTerm : public StencilTerm<1> {
+class FrictionTerm : public StencilTerm<1>, public FrozenInputReader {
  public:
   // dof: the sliding coordinate (u or v) of the crossing; node: its id in the
   // normal-force table (EvalContext::normal_force); anchor0: the rest value of the coordinate.

@@ -13,7 +13,7 @@
 
 namespace wl {
 
-class SegmentInertiaTerm : public ProportionalParameterTerm<8> {
+class SegmentInertiaTerm : public ProportionalParameterTerm<8>, public PositionDependentMass {
  public:
   // One segment; rho is the linear density in kg/m (> 0).
   void add(const std::array<int, 8>& stencil, double rho);

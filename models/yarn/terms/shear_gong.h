@@ -20,10 +20,11 @@
 #include <vector>
 
 #include "models/core/term.h"
+#include "models/yarn/frozen_input_reader.h"
 
 namespace wl {
 
-class GongShearTerm : public ProportionalParameterTerm<9> {
+class GongShearTerm : public ProportionalParameterTerm<9>, public FrozenInputReader {
  public:
   // L segment rest length (m), R yarn radius (m), c lock exponent (paper: 3),
   // sigma lock sharpness (paper: 0.6; smaller = sharper, docs/models.md §4.11).
