@@ -125,7 +125,7 @@ class Simulator {
     const std::vector<std::string> keys = model->parameter_keys();
     for (const std::string& key : opt.free) {
       scene_parameter(scene, key);  // throws ParameterKeyError for an unknown key
-      if (scene.knit && opt.model == "yarn" && shapes_knit_rest(key))
+      if (opt.model == "knit" && shapes_knit_rest(key))
         throw TrajectoryFitError("parameter '" + key +
                                  "': the knit's initial state, its relaxed rest shape (docs/models.md §11.3), "
                                  "depends on it, and the forward sensitivities start from dq/dp = 0 at t = 0; "
@@ -416,13 +416,17 @@ void check_window(const std::vector<int>& window, int frames) {
 }
 
 TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetFrame>& target,
-                                   const TrajectoryFitOptions& opt) {
+                                   const TrajectoryFitOptions& options) {
   const auto wall0 = Clock::now();
   const std::clock_t cpu0 = std::clock();
-  if (opt.free.empty()) throw TrajectoryFitError("no parameter to fit: name at least one key with --free");
-  const std::vector<std::string> models = model_names();
-  if (std::find(models.begin(), models.end(), opt.model) == models.end())
-    throw TrajectoryFitError("model '" + opt.model + "': expected 'yarn' or 'fem'");
+  if (options.free.empty()) throw TrajectoryFitError("no parameter to fit: name at least one key with --free");
+  TrajectoryFitOptions opt = options;
+  if (opt.model.empty()) opt.model = yarn_level_model(scene);
+  try {
+    check_model_for_scene(scene, opt.model);
+  } catch (const std::invalid_argument& e) {
+    throw TrajectoryFitError(e.what());
+  }
   if (!(opt.bound_factor > 1.0)) throw TrajectoryFitError("bound factor must be > 1");
   std::vector<TargetFrame> frames;
   for (const TargetFrame& f : target)

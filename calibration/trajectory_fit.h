@@ -27,7 +27,7 @@ struct TargetFrame {
 };
 
 struct TrajectoryFitOptions {
-  std::string model = "yarn";           // "yarn" or "fem"
+  std::string model;                    // "yarn", "knit" or "fem"; "" = the scene's yarn level
   std::string integrator;               // "" = the scene's; must offer sensitivities
   std::vector<std::string> free;        // scene keys (calibration/scene_parameters.h)
   std::map<std::string, double> start;  // start values; absent keys start at the scene's value

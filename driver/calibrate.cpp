@@ -12,13 +12,15 @@
 #include <thread>
 
 #include "calibration/fem_test_patch.h"
+#include "calibration/first_guess.h"
 #include "calibration/knit_test_patch.h"
 #include "driver/experiment_meta.h"
 #include "driver/recorded_run.h"
+#include "models/fem/fem_model.h"
+#include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/csv_table.h"
 #include "output/json_writer.h"
-#include "models/fem/fem_model.h"
 
 namespace wl {
 namespace {
@@ -119,79 +121,6 @@ double curve_range(const std::vector<double>& r) {
   double m = 0.0;
   for (double x : r) m = std::max(m, std::abs(x));
   return m;
-}
-
-// A knit's first guess (docs/calibration.md §8): nothing derives a knit's membrane stiffness
-// from its yarn, so each stiffness a test informs starts at that test's secant at its first
-// load, R(λ₁)/λ₁ (the biaxial test's shared between warp and weft when no uniaxial test
-// informs them); the rest is default_fem_material's.
-FemMaterial knit_first_guess(const Scene& test_scene, const std::vector<FitCurve>& curves) {
-  FemMaterial m = default_fem_material(test_scene);
-  auto secant = [&](TestKind kind) {
-    for (const FitCurve& c : curves)
-      if (c.test.kind == kind && !c.test.ladder.empty() && c.target[0] > 0) return c.target[0] / c.test.ladder[0];
-    return 0.0;
-  };
-  auto set = [](double& key, double value) {
-    if (value > 0) key = value;
-  };
-  set(m.warp_stretch_N_per_m, 0.5 * secant(TestKind::biaxial));
-  set(m.weft_stretch_N_per_m, 0.5 * secant(TestKind::biaxial));
-  set(m.warp_stretch_N_per_m, secant(TestKind::uniaxial_warp));
-  set(m.weft_stretch_N_per_m, secant(TestKind::uniaxial_weft));
-  set(m.shear_N_per_m, secant(TestKind::shear));
-  set(m.warp_bending_N_m, secant(TestKind::bending_warp));
-  set(m.weft_bending_N_m, secant(TestKind::bending_weft));
-  return m;
-}
-
-// First guesses of the stretch law's extras from the curves (docs/calibration.md §8). A homogeneous
-// patch answers R_warp = k_u ε + (q_u + q_a)ε³, R_weft likewise and R_biaxial = (k_u + k_v + 2k_c)ε +
-// (q_u + q_v + 16q_a)ε³ (docs/models.md §6.3.1). The cubic part of a curve: least squares of
-// R = kε + cε³; 0 when the ladder cannot tell the two apart (fewer than two distinct strains).
-double cubic_part(const FitCurve& c) {
-  double a11 = 0, a12 = 0, a22 = 0, b1 = 0, b2 = 0;
-  for (size_t i = 0; i < c.target.size(); ++i) {
-    const double e = c.test.ladder[i], e3 = e * e * e;
-    a11 += e * e, a12 += e * e3, a22 += e3 * e3, b1 += e * c.target[i], b2 += e3 * c.target[i];
-  }
-  const double det = a11 * a22 - a12 * a12;
-  return det > 1e-12 * a11 * a22 ? (a11 * b2 - a12 * b1) / det : 0.0;
-}
-
-const FitCurve* find_curve(const std::vector<FitCurve>& curves, TestKind kind) {
-  for (const FitCurve& c : curves)
-    if (c.test.kind == kind && !c.test.rotated) return &c;
-  return nullptr;
-}
-
-// k_c = ½(biaxial − warp − weft secant at the first load), kept within (2 %, 90 %) of √(k_u k_v);
-// q from each uniaxial curve (else half the biaxial's), and with all three curves q_a from the
-// biaxial's excess, (c_b − c_u − c_v)/14; each at least 1 % of k over the largest strain²; a
-// direction no curve informs keeps no quartic (the fit does not free it).
-void stretch_law_first_guess(const std::vector<FitCurve>& curves, bool coupling, bool stiffening, FemMaterial& m) {
-  const FitCurve *u = find_curve(curves, TestKind::uniaxial_warp), *v = find_curve(curves, TestKind::uniaxial_weft),
-                 *b = find_curve(curves, TestKind::biaxial);
-  if (coupling) {
-    const double bound = std::sqrt(m.warp_stretch_N_per_m * m.weft_stretch_N_per_m);
-    auto secant = [](const FitCurve* c, double fallback) { return c ? c->target[0] / c->test.ladder[0] : fallback; };
-    const double k = 0.5 * (secant(b, 0) - secant(u, m.warp_stretch_N_per_m) - secant(v, m.weft_stretch_N_per_m));
-    m.stretch_coupling_N_per_m = std::clamp(k, 0.02 * bound, 0.9 * bound);
-  }
-  if (stiffening) {
-    auto quartic = [&](const FitCurve* c, double k) {
-      if (!c && !b) return 0.0;
-      const double q = c ? cubic_part(*c) : b ? 0.5 * cubic_part(*b) : 0.0, e = c ? c->test.ladder.back() : 0.1;
-      return std::max(q, 0.01 * k / (e * e));
-    };
-    m.warp_stretch_quartic_N_per_m = quartic(u, m.warp_stretch_N_per_m);
-    m.weft_stretch_quartic_N_per_m = quartic(v, m.weft_stretch_N_per_m);
-    if (u && v && b) {
-      const double e = b->test.ladder.back(), k = 0.5 * (m.warp_stretch_N_per_m + m.weft_stretch_N_per_m);
-      m.areal_stretch_quartic_N_per_m =
-          std::max((cubic_part(*b) - cubic_part(*u) - cubic_part(*v)) / 14.0, 0.01 * k / (e * e));
-    }
-  }
 }
 
 double mean(const std::vector<double>& x) {
@@ -308,21 +237,22 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
     (void)read_fem_parameter_file(p.scene.fem.parameter_file, law);
   }
   for (const auto& v : c.validate) {
-    p.validation_scenes.push_back(at_resolution(load_scene(v.string()), c.resolution));
+    p.validation_scenes.push_back(at_time_steps(load_scene(v.string()), c.time_steps));
     p.validation_texts.push_back(read_text_file(v));
   }
   return p;
 }
 
-CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& p) {
-  CalibrateSummary out;
-  const int patch = p.test_scene.knit ? p.test_scene.knit->courses : p.test_scene.warps;
-  if (c.progress)
-    std::fprintf(stderr, "calibrate: %zu tests on a %d x %d %spatch of %s\n", p.tests.size(), patch, patch,
-                 p.test_scene.knit ? "(courses x wales) knit " : "", c.scene_path.string().c_str());
+namespace {
 
-  // 1. Yarn level.
-  auto t0 = Clock::now();
+// The yarn level's response per test: the fit's targets, and R(0) per test (knits).
+struct YarnCurves {
+  std::vector<FitCurve> curves;
+  std::vector<double> at_rest;  // R(0) per test: knits (docs/calibration.md §8)
+};
+
+// 1. The yarn-level tests; a test that does not converge far enough to fit is a std::runtime_error.
+YarnCurves yarn_level_curves(const CalibrateConfig& c, const CalibratePlan& p) {
   // The tests run at once, one per hardware thread as the fit's starts; the curves do not depend on it.
   const int threads = c.fit.threads > 0 ? c.fit.threads : static_cast<int>(std::thread::hardware_concurrency());
   std::vector<ResponsePoint> rests;
@@ -334,8 +264,7 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
                        p.tests[k].ladder.size(), r.complete ? "" : ", stopped:", r.message.c_str());
       },
       &rests);
-  std::vector<FitCurve> curves;
-  std::vector<double> at_rest;  // R(0) per test: knits (docs/calibration.md §8)
+  YarnCurves out;
   for (size_t k = 0; k < p.tests.size(); ++k) {
     const TestSpec& t = p.tests[k];
     const ResponseCurve& r = yarn_curves[k];
@@ -351,150 +280,155 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     if (p.scene.knit && c.progress)
       std::fprintf(stderr, "       %-14s R(0) = %.4g %s, %.3g %% of the curve's range\n", "", rest.response,
                    response_unit(t.kind).c_str(), 100 * std::abs(rest.response) / curve_range(fc.target));
-    at_rest.push_back(rest.response);
-    curves.push_back(fc);
+    out.at_rest.push_back(rest.response);
+    out.curves.push_back(fc);
   }
-  out.yarn_tests_s = seconds_since(t0);
+  return out;
+}
 
-  // 2. Continuum tests at the first guess (also the time of one evaluation of every test).
-  FemMaterial guess = p.scene.knit ? knit_first_guess(p.test_scene, curves) : fem_material(p.scene);
-  if (c.diagonal_bending && guess.diagonal_bending_N_m <= 0)  // start where the law is off: the mean
-    guess.diagonal_bending_N_m = 0.5 * (guess.warp_bending_N_m + guess.weft_bending_N_m);
-  stretch_law_first_guess(curves, c.stretch_coupling, c.stretch_stiffening, guess);
-  if (!c.shear_knots_rad.empty()) guess.shear_knots_rad = c.shear_knots_rad;
-  for (size_t i = 0; i < guess.shear_knots_rad.size(); ++i)  // start where the law is linear: k_i = k_sh
-    if (guess.shear_knot_N_per_m[i] <= 0) guess.shear_knot_N_per_m[i] = guess.shear_N_per_m;
-  FemTestPatches patches(p.test_scene);  // kept over the fit's curve evaluations
-  const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
-    return patches.run(m, t, keys);
-  };
-  t0 = Clock::now();
-  std::vector<ResponseCurve> first;
-  for (const FitCurve& fc : curves) first.push_back(continuum(guess, fc.test, {}));
-  out.fem_tests_s = seconds_since(t0);
+FirstGuessOptions first_guess_options(const CalibrateConfig& c) {
+  FirstGuessOptions o;
+  o.diagonal_bending = c.diagonal_bending;
+  o.stretch_coupling = c.stretch_coupling;
+  o.stretch_stiffening = c.stretch_stiffening;
+  o.shear_knots_rad = c.shear_knots_rad;
+  return o;
+}
 
-  // 3. Fit.
-  t0 = Clock::now();
-  FitOptions fo = c.fit;
-  fo.progress = c.progress;
-  out.fit = fit_continuum(curves, guess, continuum, fo);
-  out.fit_s = seconds_since(t0);
-  FemMaterial calibrated = out.fit.material;
-  calibrated.areal_density_kg_per_m2 = p.scene.knit ? knit_areal_density(p.test_scene) : matched_areal_density(p.scene);
-  if (c.progress) {
-    std::fprintf(stderr, "  fit: %s (cost %.4g, %d iterations, %d curve evaluations, %.1f s)\n",
-                 out.fit.converged ? "converged" : "NOT converged", out.fit.cost, out.fit.iterations,
-                 out.fit.evaluations, out.fit_s);
-    for (size_t i = 0; i < curves.size(); ++i)
-      std::fprintf(stderr, "    %-14s residual %.3g %% of the curve's range\n", test_name(curves[i].test).c_str(),
-                   100 * out.fit.relative_rms[i]);
-  }
+void print_fit(const FitResult& fit, const std::vector<FitCurve>& curves, double fit_s) {
+  std::fprintf(stderr, "  fit: %s (cost %.4g, %d iterations, %d curve evaluations, %.1f s)\n",
+               fit.converged ? "converged" : "NOT converged", fit.cost, fit.iterations, fit.evaluations, fit_s);
+  for (size_t i = 0; i < curves.size(); ++i)
+    std::fprintf(stderr, "    %-14s residual %.3g %% of the curve's range\n", test_name(curves[i].test).c_str(),
+                 100 * fit.relative_rms[i]);
+}
 
-  std::filesystem::create_directories(c.out_dir);
-  // curves.csv
-  {
-    CsvTable csv(c.out_dir / "curves.csv",
-                 {"test", "load", "load_unit", "yarn", "fitted", "first_guess", "response_unit"});
-    for (size_t i = 0; i < curves.size(); ++i)
-      for (size_t k = 0; k < curves[i].target.size(); ++k) {
-        const TestKind kind = curves[i].test.kind;
-        const double fg = k < first[i].points.size() ? first[i].points[k].response : NAN;
-        csv.row({test_name(curves[i].test), csv_number(curves[i].test.ladder[k]), load_unit(kind),
-                 csv_number(curves[i].target[k]), csv_number(out.fit.fitted[i][k]), csv_number(fg),
-                 response_unit(kind)});
-      }
-    csv.commit();
-  }
-
-  // 4. Validation on motion.
-  Json validation = Json::array();
-  t0 = Clock::now();
-  std::unique_ptr<CsvTable> vcsv;
-  if (!p.validation_scenes.empty())
-    vcsv = std::make_unique<CsvTable>(c.out_dir / "validation.csv",
-                                      std::vector<std::string>{"scene", "variant", "time_s", "rms_m", "max_m"});
-  for (size_t s = 0; s < p.validation_scenes.size(); ++s) {
-    const Scene& vs = p.validation_scenes[s];
-    const std::string label = c.validate[s].stem().string();
-    const IntegratorOptions iopt = scene_integrator_options(vs);
-    std::vector<CrossingFrame> yarn;
-    RecordOptions rec;
-    rec.progress = c.progress;
-    rec.label = label + " yarn";
-    rec.step_ends = true;
-    rec.on_frame = [&](const Frame& f) {
-      CrossingFrame cf;
-      cf.x = f.points;
-      const DataArray *u = nullptr, *v = nullptr;
-      for (const DataArray& a : f.point_data) {
-        if (a.name == "u") u = &a;
-        if (a.name == "v") v = &a;
-      }
-      for (Eigen::Index n = 0; n < f.points.rows(); ++n) cf.uv.emplace_back(u->values[n], v->values[n]);
-      yarn.push_back(std::move(cf));
-    };
-    if (c.progress) std::fprintf(stderr, "  validation %s: yarn level\n", label.c_str());
-    const RecordedRun yr = run_recorded(vs, "yarn", vs.integrator, iopt, rec);
-    if (yr.result.outcome != Outcome::ok)
-      throw std::runtime_error("validation " + label + ": the yarn-level run ended '" + to_string(yr.result.outcome) +
-                               "': " + yr.result.message);
-    FemMaterial stiff_only = calibrated;
-    stiff_only.areal_density_kg_per_m2 = default_fem_material(vs).areal_density_kg_per_m2;
-    FemMaterial full = calibrated;
-    full.areal_density_kg_per_m2 = matched_areal_density(vs);
-    const std::vector<std::pair<std::string, FemMaterial>> variants{
-        {"first_guess", default_fem_material(vs)}, {"calibrated_stiffness", stiff_only}, {"calibrated", full}};
-    Json entry = Json::object();
-    entry.set("scene", c.validate[s].string());
-    entry.set("scene_hash", text_hash(p.validation_texts[s]));
-    entry.set("resolution", c.resolution.describe());
-    entry.set("frames", static_cast<int>(yarn.size()));
-    entry.set("yarn_cpu_s_per_step", cpu_per_step(yr));
-    // Each side's time error beside the distance (docs/models.md §7.8).
-    if (c.progress) std::fprintf(stderr, "  validation %s: yarn-level time error\n", label.c_str());
-    const TimeErrorEstimate yarn_error = estimate_time_error(vs, "yarn", vs.integrator, iopt, yr);
-    entry.set("yarn_time_error", yarn_error.to_json());
-    Json vars = Json::array();
-    for (const auto& [name, m] : variants) {
-      if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
-      Scene variant_scene = with_material(vs, m, c.border_strip && name != "first_guess");
-      variant_scene.fem.grid_line_bending = c.grid_line_bending && name != "first_guess";
-      const VariantRun vr = run_continuum_variant(name, variant_scene, yarn, iopt, c.progress);
-      const TimeErrorEstimate fem_error = estimate_time_error(variant_scene, "fem", vs.integrator, iopt, vr.run);
-      for (size_t k = 0; k < vr.times.size(); ++k)
-        vcsv->row({label, name, csv_number(vr.times[k]), csv_number(vr.rms[k]), csv_number(vr.max[k])});
-      Json j = Json::object();
-      j.set("variant", name);
-      j.set("outcome", to_string(vr.run.result.outcome));
-      j.set("areal_density_kg_per_m2", m.areal_density_kg_per_m2);
-      j.set("mean_rms_m", mean(vr.rms));
-      j.set("max_rms_m", maximum(vr.rms));
-      j.set("max_m", maximum(vr.max));
-      j.set("cpu_s_per_step", cpu_per_step(vr.run));
-      j.set("step_time_ratio_to_yarn", cpu_per_step(yr) > 0 ? cpu_per_step(vr.run) / cpu_per_step(yr) : NAN);
-      j.set("time_error", fem_error.to_json());
-      const std::string budget = error_budget_verdict(mean(vr.rms), yarn_error, fem_error);
-      j.set("budget", budget);
-      vars.push(std::move(j));
-      if (c.progress)
-        std::fprintf(stderr,
-                     "    %s: RMS distance mean %.3g mm, worst frame %.3g mm, max %.3g mm; time error yarn %.3g mm, "
-                     "continuum %.3g mm (mean RMS): %s\n",
-                     name.c_str(), 1e3 * mean(vr.rms), 1e3 * maximum(vr.rms), 1e3 * maximum(vr.max),
-                     1e3 * yarn_error.mean_rms, 1e3 * fem_error.mean_rms, budget.c_str());
+// curves.csv: per test and load the yarn, fitted and first-guess response.
+void write_curves_csv(const std::filesystem::path& out_dir, const std::vector<FitCurve>& curves,
+                      const std::vector<ResponseCurve>& first, const FitResult& fit) {
+  CsvTable csv(out_dir / "curves.csv", {"test", "load", "load_unit", "yarn", "fitted", "first_guess", "response_unit"});
+  for (size_t i = 0; i < curves.size(); ++i)
+    for (size_t k = 0; k < curves[i].target.size(); ++k) {
+      const TestKind kind = curves[i].test.kind;
+      const double fg = k < first[i].points.size() ? first[i].points[k].response : NAN;
+      csv.row({test_name(curves[i].test), csv_number(curves[i].test.ladder[k]), load_unit(kind),
+               csv_number(curves[i].target[k]), csv_number(fit.fitted[i][k]), csv_number(fg), response_unit(kind)});
     }
-    entry.set("variants", std::move(vars));
-    validation.push(std::move(entry));
-  }
-  if (vcsv) vcsv->commit();
-  out.validation_s = seconds_since(t0);
+  csv.commit();
+}
 
-  // params.toml with provenance
-  double worst = 0;
-  for (double r : out.fit.relative_rms) worst = std::max(worst, r);
+// The yarn level of a validation scene: its run and its crossings per frame.
+struct YarnValidation {
+  RecordedRun run;
+  std::vector<CrossingFrame> frames;
+};
+
+YarnValidation run_yarn_validation(const Scene& vs, const std::string& label, const IntegratorOptions& iopt,
+                                   bool progress) {
+  YarnValidation y;
+  RecordOptions rec;
+  rec.progress = progress;
+  rec.label = label + " yarn";
+  rec.step_ends = true;
+  rec.on_frame = [&](const Frame& f) {
+    CrossingFrame cf;
+    cf.x = f.points;
+    const DataArray *u = nullptr, *v = nullptr;
+    for (const DataArray& a : f.point_data) {
+      if (a.name == "u") u = &a;
+      if (a.name == "v") v = &a;
+    }
+    for (Eigen::Index n = 0; n < f.points.rows(); ++n) cf.uv.emplace_back(u->values[n], v->values[n]);
+    y.frames.push_back(std::move(cf));
+  };
+  if (progress) std::fprintf(stderr, "  validation %s: yarn level\n", label.c_str());
+  y.run = run_recorded(vs, yarn_level_model(vs), vs.integrator, iopt, rec);
+  if (y.run.result.outcome != Outcome::ok)
+    throw std::runtime_error("validation " + label + ": the yarn-level run ended '" + to_string(y.run.result.outcome) +
+                             "': " + y.run.result.message);
+  return y;
+}
+
+// One continuum variant of a validation scene against its yarn level: its rows of validation.csv and its record.
+Json validate_variant(const CalibrateConfig& c, const Scene& vs, const std::string& label, const std::string& name,
+                      const FemMaterial& m, const YarnValidation& yarn, const TimeErrorEstimate& yarn_error,
+                      CsvTable& vcsv) {
+  const IntegratorOptions iopt = scene_integrator_options(vs);
+  if (c.progress) std::fprintf(stderr, "  validation %s: continuum, %s\n", label.c_str(), name.c_str());
+  Scene variant_scene = with_material(vs, m, c.border_strip && name != "first_guess");
+  variant_scene.fem.grid_line_bending = c.grid_line_bending && name != "first_guess";
+  const VariantRun vr = run_continuum_variant(name, variant_scene, yarn.frames, iopt, c.progress);
+  const TimeErrorEstimate fem_error = estimate_time_error(variant_scene, "fem", vs.integrator, iopt, vr.run);
+  for (size_t k = 0; k < vr.times.size(); ++k)
+    vcsv.row({label, name, csv_number(vr.times[k]), csv_number(vr.rms[k]), csv_number(vr.max[k])});
+  const RecordedRun& yr = yarn.run;
+  Json j = Json::object();
+  j.set("variant", name);
+  j.set("outcome", to_string(vr.run.result.outcome));
+  j.set("areal_density_kg_per_m2", m.areal_density_kg_per_m2);
+  j.set("mean_rms_m", mean(vr.rms));
+  j.set("max_rms_m", maximum(vr.rms));
+  j.set("max_m", maximum(vr.max));
+  j.set("cpu_s_per_step", cpu_per_step(vr.run));
+  j.set("step_time_ratio_to_yarn", cpu_per_step(yr) > 0 ? cpu_per_step(vr.run) / cpu_per_step(yr) : NAN);
+  j.set("time_error", fem_error.to_json());
+  const std::string budget = error_budget_verdict(mean(vr.rms), yarn_error, fem_error);
+  j.set("budget", budget);
+  if (c.progress)
+    std::fprintf(stderr,
+                 "    %s: RMS distance mean %.3g mm, worst frame %.3g mm, max %.3g mm; time error yarn %.3g mm, "
+                 "continuum %.3g mm (mean RMS): %s\n",
+                 name.c_str(), 1e3 * mean(vr.rms), 1e3 * maximum(vr.rms), 1e3 * maximum(vr.max),
+                 1e3 * yarn_error.mean_rms, 1e3 * fem_error.mean_rms, budget.c_str());
+  return j;
+}
+
+// Validation scene `s`: the yarn level, then the continuum at the first guess, with the calibrated
+// stiffness only, and fully calibrated (the areal density matched to the scene's yarn mass).
+Json validate_scene(const CalibrateConfig& c, const CalibratePlan& p, size_t s, const FemMaterial& calibrated,
+                    CsvTable& vcsv) {
+  const Scene& vs = p.validation_scenes[s];
+  const std::string label = c.validate[s].stem().string();
+  const IntegratorOptions iopt = scene_integrator_options(vs);
+  const YarnValidation yarn = run_yarn_validation(vs, label, iopt, c.progress);
+  FemMaterial stiff_only = calibrated;
+  stiff_only.areal_density_kg_per_m2 = default_fem_material(vs).areal_density_kg_per_m2;
+  FemMaterial full = calibrated;
+  full.areal_density_kg_per_m2 = matched_areal_density(vs);
+  const std::vector<std::pair<std::string, FemMaterial>> variants{
+      {"first_guess", default_fem_material(vs)}, {"calibrated_stiffness", stiff_only}, {"calibrated", full}};
+  Json entry = Json::object();
+  entry.set("scene", c.validate[s].string());
+  entry.set("scene_hash", text_hash(p.validation_texts[s]));
+  entry.set("resolution", c.time_steps.describe());
+  entry.set("frames", static_cast<int>(yarn.frames.size()));
+  entry.set("yarn_cpu_s_per_step", cpu_per_step(yarn.run));
+  // Each side's time error beside the distance (docs/models.md §7.8).
+  if (c.progress) std::fprintf(stderr, "  validation %s: yarn-level time error\n", label.c_str());
+  const TimeErrorEstimate yarn_error = estimate_time_error(vs, yarn_level_model(vs), vs.integrator, iopt, yarn.run);
+  entry.set("yarn_time_error", yarn_error.to_json());
+  Json vars = Json::array();
+  for (const auto& [name, m] : variants) vars.push(validate_variant(c, vs, label, name, m, yarn, yarn_error, vcsv));
+  entry.set("variants", std::move(vars));
+  return entry;
+}
+
+// 4. Validation on motion: validation.csv and the records of calibration.json.
+Json validate_on_motion(const CalibrateConfig& c, const CalibratePlan& p, const FemMaterial& calibrated) {
+  Json validation = Json::array();
+  if (p.validation_scenes.empty()) return validation;
+  CsvTable vcsv(c.out_dir / "validation.csv", std::vector<std::string>{"scene", "variant", "time_s", "rms_m", "max_m"});
+  for (size_t s = 0; s < p.validation_scenes.size(); ++s) validation.push(validate_scene(c, p, s, calibrated, vcsv));
+  vcsv.commit();
+  return validation;
+}
+
+// params.toml: the calibrated parameters with their provenance.
+void write_params_toml(const CalibrateConfig& c, const CalibratePlan& p, const std::vector<FitCurve>& curves,
+                       const FitResult& fit, const FemMaterial& calibrated, int patch) {
   std::ostringstream rms;
   for (size_t i = 0; i < curves.size(); ++i)
-    rms << (i ? ", " : "") << test_name(curves[i].test) << " " << out.fit.relative_rms[i];
+    rms << (i ? ", " : "") << test_name(curves[i].test) << " " << fit.relative_rms[i];
   write_fem_parameter_file(
       (c.out_dir / "params.toml").string(), calibrated,
       {{"source_scene", c.scene_path.string()},
@@ -510,19 +444,12 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
        {"areal_density", p.scene.knit ? "yarn mass of the knit test patch over its contact grid's area"
                                       : "total yarn mass of the scene over the crossing grid's area"},
        {"created", utc_now()}});
+}
 
-  // calibration.json
-  Json j = Json::object();
-  j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
-  j.set("scene_hash", text_hash(p.scene_text));
-  j.set("patch", patch);
-  j.set("cloth", p.scene.knit ? "knit" : "woven");
-  j.set("sliding", c.sliding);
-  j.set("border_strip", c.border_strip);
-  j.set("grid_line_bending", c.grid_line_bending);
-  j.set("shear_knots_rad", Json(calibrated.shear_knots_rad));
+// calibration.json "parameters": the fitted keys, then the areal density (not fitted).
+Json parameters_json(const FitResult& fit, const FemMaterial& guess, const FemMaterial& calibrated) {
   Json params = Json::array();
-  for (const FittedParameter& fp : out.fit.parameters) {
+  for (const FittedParameter& fp : fit.parameters) {
     Json e = Json::object();
     e.set("key", fp.key);
     e.set("start", fp.start);
@@ -545,31 +472,32 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
       "note",
       "not fitted: static tests cannot see mass; set so that the continuum carries the yarn level's total mass");
   params.push(std::move(density));
-  j.set("parameters", std::move(params));
-  Json corr = Json::array();
-  for (const auto& row : out.fit.correlation) corr.push(Json(row));
-  j.set("correlation", std::move(corr));
-  j.set("covariance_note", out.fit.covariance_message.empty()
-                               ? "ceres::Covariance (DENSE_SVD) of log-parameters times the residual variance"
-                               : out.fit.covariance_message);
-  j.set("singular_values", Json(out.fit.singular_values));
+  return params;
+}
+
+// calibration.json "tests": per test its points and residual, and a knit's R(0).
+Json tests_json(const YarnCurves& yarn, const FitResult& fit, bool knit) {
+  const std::vector<FitCurve>& curves = yarn.curves;
   Json tests = Json::array();
   for (size_t i = 0; i < curves.size(); ++i) {
     Json e = Json::object();
     e.set("test", test_name(curves[i].test));
     e.set("points", static_cast<int>(curves[i].target.size()));
-    e.set("residual_rms_relative", out.fit.relative_rms[i]);
-    if (p.scene.knit) {  // R(0), and relative to the range of the fit's target R − R(0)
-      e.set("response_at_rest", at_rest[i]);
-      e.set("response_at_rest_relative", at_rest[i] / curve_range(curves[i].target));
+    e.set("residual_rms_relative", fit.relative_rms[i]);
+    if (knit) {  // R(0), and relative to the range of the fit's target R − R(0)
+      e.set("response_at_rest", yarn.at_rest[i]);
+      e.set("response_at_rest_relative", yarn.at_rest[i] / curve_range(curves[i].target));
     }
     e.set("load_unit", load_unit(curves[i].test.kind));
     e.set("response_unit", response_unit(curves[i].test.kind));
     tests.push(std::move(e));
   }
-  j.set("tests", std::move(tests));
+  return tests;
+}
+
+Json starts_json(const FitResult& fit) {
   Json starts = Json::array();
-  for (const StartOutcome& s : out.fit.starts) {
+  for (const StartOutcome& s : fit.starts) {
     Json e = Json::object();
     e.set("start", Json(s.start));
     e.set("value", Json(s.value));
@@ -578,29 +506,111 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
     e.set("usable", s.usable);
     starts.push(std::move(e));
   }
-  j.set("starts", std::move(starts));
-  j.set("starts_at_best", out.fit.starts_at_best);
+  return starts;
+}
+
+Json fit_json(const CalibrateConfig& c, const FitResult& r) {
   Json fit = Json::object();
-  fit.set("converged", out.fit.converged);
-  fit.set("message", out.fit.message);
-  fit.set("cost", out.fit.cost);
-  fit.set("iterations", out.fit.iterations);
-  fit.set("curve_evaluations", out.fit.evaluations);
+  fit.set("converged", r.converged);
+  fit.set("message", r.message);
+  fit.set("cost", r.cost);
+  fit.set("iterations", r.iterations);
+  fit.set("curve_evaluations", r.evaluations);
   fit.set("loss", c.fit.loss);
   fit.set("residuals", c.fit.residuals);
   fit.set("seed", static_cast<int>(c.fit.seed));
-  j.set("fit", std::move(fit));
+  return fit;
+}
+
+Json timings_json(const CalibrateSummary& out) {
   Json timing = Json::object();
   timing.set("yarn_tests_wall_s", out.yarn_tests_s);
   timing.set("fem_tests_wall_s", out.fem_tests_s);
   timing.set("fit_wall_s", out.fit_s);
   timing.set("fit_cpu_s", out.fit.cpu_s);
   timing.set("validation_wall_s", out.validation_s);
-  j.set("timings", std::move(timing));
+  return timing;
+}
+
+// What calibration.json holds beside the validation records.
+struct CalibrationRecord {
+  const YarnCurves& yarn;
+  const FemMaterial &guess, &calibrated;
+  const CalibrateSummary& summary;
+  int patch;
+};
+
+void write_calibration_json(const CalibrateConfig& c, const CalibratePlan& p, const CalibrationRecord& r,
+                            Json validation) {
+  const FitResult& fit = r.summary.fit;
+  Json j = Json::object();
+  j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
+  j.set("scene_hash", text_hash(p.scene_text));
+  j.set("patch", r.patch);
+  j.set("cloth", p.scene.knit ? "knit" : "woven");
+  j.set("sliding", c.sliding);
+  j.set("border_strip", c.border_strip);
+  j.set("grid_line_bending", c.grid_line_bending);
+  j.set("shear_knots_rad", Json(r.calibrated.shear_knots_rad));
+  j.set("parameters", parameters_json(fit, r.guess, r.calibrated));
+  Json corr = Json::array();
+  for (const auto& row : fit.correlation) corr.push(Json(row));
+  j.set("correlation", std::move(corr));
+  j.set("covariance_note", fit.covariance_message.empty()
+                               ? "ceres::Covariance (DENSE_SVD) of log-parameters times the residual variance"
+                               : fit.covariance_message);
+  j.set("singular_values", Json(fit.singular_values));
+  j.set("tests", tests_json(r.yarn, fit, p.scene.knit.has_value()));
+  j.set("starts", starts_json(fit));
+  j.set("starts_at_best", fit.starts_at_best);
+  j.set("fit", fit_json(c, fit));
+  j.set("timings", timings_json(r.summary));
   j.set("validation", std::move(validation));
   j.set("created", utc_now());
   add_provenance(j);
   write_file_atomically(c.out_dir / "calibration.json", j.dump());
+}
+
+}  // namespace
+
+CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& p) {
+  CalibrateSummary out;
+  const int patch = p.test_scene.knit ? p.test_scene.knit->courses : p.test_scene.warps;
+  if (c.progress)
+    std::fprintf(stderr, "calibrate: %zu tests on a %d x %d %spatch of %s\n", p.tests.size(), patch, patch,
+                 p.test_scene.knit ? "(courses x wales) knit " : "", c.scene_path.string().c_str());
+  auto t0 = Clock::now();
+  const YarnCurves yarn = yarn_level_curves(c, p);  // 1. the yarn level
+  out.yarn_tests_s = seconds_since(t0);
+
+  // 2. Continuum tests at the first guess (also the time of one evaluation of every test).
+  const FemMaterial guess = continuum_first_guess(p.scene, p.test_scene, yarn.curves, first_guess_options(c));
+  FemTestPatches patches(p.test_scene);  // kept over the fit's curve evaluations
+  const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
+    return patches.run(m, t, keys);
+  };
+  t0 = Clock::now();
+  std::vector<ResponseCurve> first;
+  for (const FitCurve& fc : yarn.curves) first.push_back(continuum(guess, fc.test, {}));
+  out.fem_tests_s = seconds_since(t0);
+
+  // 3. Fit.
+  t0 = Clock::now();
+  FitOptions fo = c.fit;
+  fo.progress = c.progress;
+  out.fit = fit_continuum(yarn.curves, guess, continuum, fo);
+  out.fit_s = seconds_since(t0);
+  FemMaterial calibrated = out.fit.material;
+  calibrated.areal_density_kg_per_m2 = p.scene.knit ? knit_areal_density(p.test_scene) : matched_areal_density(p.scene);
+  if (c.progress) print_fit(out.fit, yarn.curves, out.fit_s);
+  std::filesystem::create_directories(c.out_dir);
+  write_curves_csv(c.out_dir, yarn.curves, first, out.fit);
+
+  t0 = Clock::now();
+  Json validation = validate_on_motion(c, p, calibrated);  // 4. validation on motion
+  out.validation_s = seconds_since(t0);
+  write_params_toml(c, p, yarn.curves, out.fit, calibrated, patch);
+  write_calibration_json(c, p, {yarn, guess, calibrated, out, patch}, std::move(validation));
   return out;
 }
 

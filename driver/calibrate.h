@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "calibration/fit.h"
-#include "driver/resolution.h"
+#include "driver/time_steps.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -38,7 +38,7 @@ struct CalibrateConfig {
   std::vector<double> shear_knots_rad;
   FitOptions fit;
   std::vector<std::filesystem::path> validate;  // scenes to validate on
-  Resolution resolution;                        // of the validation runs (both sides)
+  TimeSteps time_steps;                         // of the validation runs (both sides)
   std::filesystem::path out_dir;
   bool progress = true;
 };

@@ -10,14 +10,14 @@
 #include "driver/experiment_meta.h"
 #include "driver/recorded_run.h"
 #include "driver/time_error.h"
-#include "output/atomic_file.h"
-#include "output/csv_table.h"
-#include "output/json_writer.h"
-#include "output/pvd_series.h"
 #include "models/core/term_model.h"
 #include "models/fem/fem_material.h"
 #include "models/fem/fem_model.h"
 #include "models/model_factory.h"
+#include "output/atomic_file.h"
+#include "output/csv_table.h"
+#include "output/json_writer.h"
+#include "output/pvd_series.h"
 
 namespace wl {
 namespace {
@@ -84,8 +84,15 @@ struct ModelRun {
   std::vector<Frame> frames;
 };
 
-ModelRun run_with_ledger(const Scene& s, const std::string& model, EnergyLedger& ledger, CsvTable& energies,
+// The model a side of the comparison builds: the scene's yarn level ("yarn" or "knit") or "fem".
+std::string model_of_side(const Scene& s, const std::string& side) {
+  return side == "fem" ? side : yarn_level_model(s);
+}
+
+// `side` is "yarn" (the scene's yarn level) or "fem".
+ModelRun run_with_ledger(const Scene& s, const std::string& side, EnergyLedger& ledger, CsvTable& energies,
                          CsvTable& directions, bool progress) {
+  const std::string model = model_of_side(s, side);
   ModelRun out;
   {  // the initial state
     std::unique_ptr<Model> m = make_model(s, model);
@@ -111,20 +118,21 @@ ModelRun run_with_ledger(const Scene& s, const std::string& model, EnergyLedger&
   return out;
 }
 
-double time_error_of(const Scene& s, const std::string& model, const RecordedRun& run, const DiagnoseConfig& c,
+double time_error_of(const Scene& s, const std::string& side, const RecordedRun& run, const DiagnoseConfig& c,
                      Json& record, TimeErrorEstimate& e) {
+  const std::string model = model_of_side(s, side);
   e.second_run.outcome = Outcome::not_offered;
   if (!c.error_estimate) return NAN;
   if (c.progress) std::fprintf(stderr, "diagnose: %s time error\n", model.c_str());
   e = estimate_time_error(s, model, s.integrator, scene_integrator_options(s), run);
-  record.set(model + "_time_error", e.to_json());
+  record.set(side + "_time_error", e.to_json());
   return e.ok() ? e.mean_rms : NAN;
 }
 
 }  // namespace
 
 DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
-  Scene yarn_scene = at_resolution(c.scene, c.resolution);
+  Scene yarn_scene = at_time_steps(c.scene, c.time_steps);
   Scene fem_scene = yarn_scene;
   if (c.fem_params) fem_scene.fem.parameter_file = c.fem_params->string();
   (void)fem_material(fem_scene);  // a bad file: FemParameterError, before anything is written
@@ -202,7 +210,7 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
 
   Json j = Json::object();
   j.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, c.overrides));
-  j.set("resolution", c.resolution.describe());
+  j.set("resolution", c.time_steps.describe());
   j.set("continuum_parameters", c.fem_params ? c.fem_params->string() : "the scene's (first guess without a file)");
   TimeErrorEstimate ye, fe;
   r.yarn_time_error_m = time_error_of(yarn_scene, "yarn", yarn.run, c, j, ye);

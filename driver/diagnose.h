@@ -1,6 +1,6 @@
 // `weavelab diagnose`: where and when the continuum parts from the yarn level
-// on one scene (docs/design.md §7.6). Both models run at one time resolution
-// (resolution.h), each with its own time error, and the command writes into
+// on one scene (docs/design.md §7.6). Both models run at the same time steps
+// (time_steps.h), each with its own time error, and the command writes into
 // the output folder
 //   energies.csv    per model and output frame: kinetic energy, the potential
 //                   energy of every conservative term (stretch, shear, bending,
@@ -27,7 +27,7 @@
 #include <optional>
 #include <string>
 
-#include "driver/resolution.h"
+#include "driver/time_steps.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -37,7 +37,7 @@ struct DiagnoseConfig {
   Scene scene;                                      // as loaded, command-line overrides applied
   std::map<std::string, std::string> overrides;     // recorded in the JSON
   std::optional<std::filesystem::path> fem_params;  // the continuum's parameters (default: the scene's)
-  Resolution resolution;
+  TimeSteps time_steps;
   bool error_estimate = true;
   std::filesystem::path out_dir;
   bool progress = true;

@@ -233,15 +233,15 @@ FidelityPlan plan_fidelity(const FidelityConfig& c) {
   auto scene_of = [&](const std::string& option, const std::string& name) {
     try {
       VariantScene v = variant_scene(s, name, calibrated);
-      if (!v.time_rung) v.scene = at_resolution(v.scene, c.resolution);
-      if (name == "scene_step" && c.resolution.scene) v.same_as_full = "the comparison runs at the scene's step";
+      if (!v.time_rung) v.scene = at_time_steps(v.scene, c.time_steps);
+      if (name == "scene_step" && c.time_steps.scene) v.same_as_full = "the comparison runs at the scene's step";
       return v;
     } catch (const std::invalid_argument& e) {  // an unknown name
       throw std::invalid_argument(option + ": " + e.what());
     }
   };
   p.reference = {c.reference, scene_of("--reference", c.reference)};
-  if (p.reference.variant.model != "yarn")
+  if (p.reference.variant.model == "fem")
     throw std::invalid_argument("--reference: got '" + c.reference +
                                 "', expected a yarn-level variant (the distances are measured at its crossings)");
 
@@ -266,95 +266,88 @@ FidelityPlan plan_fidelity(const FidelityConfig& c) {
   return p;
 }
 
-FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  FidelityResult out;
-  for (const auto& [name, why] : p.left_out)  // also with --quiet: what the ladder lacks
-    std::fprintf(stderr, "fidelity: %s left out: %s\n", name.c_str(), why.c_str());
+namespace {
 
-  // 1. The reference: its crossings, material coordinates and energy at every
-  // frame, run here or read from the file of a --reference-only run.
-  ReferenceFrames ref;
-  const ComparedPoints compared(c.scene);
-  RecordOptions rec;
-  rec.progress = c.progress;
-  rec.energies = true;
-  rec.label = p.reference.name;
-  rec.step_ends = true;  // for the Richardson time-error estimate
+// 1. The reference: its crossings, material coordinates and energy at every
+// frame into `ref`, and its row (the reference against itself), run here or
+// read from the file of a --reference-only run.
+FidelityRow reference_row(const FidelityConfig& c, const FidelityPlan& p, const ComparedPoints& compared,
+                          RecordOptions rec, ReferenceFrames& ref) {
   if (c.reference_from) {
     FidelityReference stored = read_fidelity_reference(*c.reference_from, fidelity_reference_key(c));
     check_reference_frames(stored.frames, output_times(p.reference.variant.scene), compared.count(c.scene),
                            *c.reference_from);
     ref = std::move(stored.frames);
-    out.rows.push_back(stored.row);
     if (c.progress)
       std::fprintf(stderr, "fidelity: reference %s read from %s\n", p.reference.name.c_str(),
                    c.reference_from->string().c_str());
-  } else {
-    rec.on_frame = [&](const Frame& f) {
-      ref.times.push_back(f.time);
-      ref.x.push_back(compared.points(f));
-      ref.uv.push_back(compared.uv(f));
-    };
-    if (c.progress) std::fprintf(stderr, "fidelity: reference %s\n", p.reference.name.c_str());
-    const Scene& rs = p.reference.variant.scene;
-    const RecordedRun rr = timed_runs(rs, "yarn", rec, c.repeats);
-    if (rr.result.outcome != Outcome::ok)
-      throw std::runtime_error("the reference '" + p.reference.name + "' ended '" + to_string(rr.result.outcome) +
-                               "' at t = " + std::to_string(rr.end_time) + " s: " + rr.result.message);
-    for (size_t k = 0; k < rr.kinetic_J.size(); ++k)
-      ref.energy_change.push_back(rr.kinetic_J[k] + rr.potential_J[k] - rr.initial_energy_J);
-    // the reference against itself, through the same measurement as every yarn variant
-    FidelityRow row = row_of(p.reference, rr);
-    DistanceTally tally;
-    for (size_t k = 0; k < ref.x.size(); ++k) tally.add_frame(crossing_distances(ref.x[k], ref.x[k]));
-    tally.fill(row, ref);
-    row.energy_diff_J = max_energy_difference(rr, ref);
-    add_time_error(row, rs, "yarn", rr, c);
-    if (c.progress && !std::isnan(row.time_error_worst_frame_rms_m))
-      std::fprintf(stderr, "  reference time error: worst-frame RMS %.3g mm (mean %.3g mm)%s\n",
-                   1e3 * row.time_error_worst_frame_rms_m, 1e3 * row.time_error_mean_rms_m,
-                   row.time_error_worst_frame_rms_m > 0.1 * p.tolerance_m
-                       ? ": above a tenth of the tolerance, distances that small do not measure a model difference"
-                       : "");
-    out.rows.push_back(row);
-    if (c.reference_only) write_fidelity_reference(c.out_dir, fidelity_reference_key(c), {ref, row});
+    return stored.row;
   }
-  const long reference_steps = out.rows.front().steps;
+  rec.on_frame = [&](const Frame& f) {
+    ref.times.push_back(f.time);
+    ref.x.push_back(compared.points(f));
+    ref.uv.push_back(compared.uv(f));
+  };
+  if (c.progress) std::fprintf(stderr, "fidelity: reference %s\n", p.reference.name.c_str());
+  const Scene& rs = p.reference.variant.scene;
+  const RecordedRun rr = timed_runs(rs, p.reference.variant.model, rec, c.repeats);
+  if (rr.result.outcome != Outcome::ok)
+    throw std::runtime_error("the reference '" + p.reference.name + "' ended '" + to_string(rr.result.outcome) +
+                             "' at t = " + std::to_string(rr.end_time) + " s: " + rr.result.message);
+  for (size_t k = 0; k < rr.kinetic_J.size(); ++k)
+    ref.energy_change.push_back(rr.kinetic_J[k] + rr.potential_J[k] - rr.initial_energy_J);
+  // the reference against itself, through the same measurement as every yarn variant
+  FidelityRow row = row_of(p.reference, rr);
+  DistanceTally tally;
+  for (size_t k = 0; k < ref.x.size(); ++k) tally.add_frame(crossing_distances(ref.x[k], ref.x[k]));
+  tally.fill(row, ref);
+  row.energy_diff_J = max_energy_difference(rr, ref);
+  add_time_error(row, rs, p.reference.variant.model, rr, c);
+  if (c.progress && !std::isnan(row.time_error_worst_frame_rms_m))
+    std::fprintf(stderr, "  reference time error: worst-frame RMS %.3g mm (mean %.3g mm)%s\n",
+                 1e3 * row.time_error_worst_frame_rms_m, 1e3 * row.time_error_mean_rms_m,
+                 row.time_error_worst_frame_rms_m > 0.1 * p.tolerance_m
+                     ? ": above a tenth of the tolerance, distances that small do not measure a model difference"
+                     : "");
+  if (c.reference_only) write_fidelity_reference(c.out_dir, fidelity_reference_key(c), {ref, row});
+  return row;
+}
 
-  // 2. Every variant, measured frame by frame as it runs (none after --reference-only).
-  const std::vector<PlannedVariant> none;
-  for (const PlannedVariant& pv : c.reference_only ? none : p.variants) {
-    const Scene& vs = pv.variant.scene;
-    const bool continuum = pv.variant.model == "fem";
-    std::unique_ptr<FemModel> geometry = continuum ? std::make_unique<FemModel>(vs) : nullptr;
-    DistanceTally tally;
-    size_t k = 0;
-    RecordOptions vr = rec;
-    vr.label = pv.name;
-    vr.on_frame = [&](const Frame& f) {
-      if (k >= ref.x.size()) return;
-      tally.add_frame(continuum ? surface_distances(*geometry, f.points, ref.x[k], ref.uv[k])
-                                : crossing_distances(compared.points(f), ref.x[k]));
-      ++k;
-    };
-    if (c.progress) std::fprintf(stderr, "fidelity: %s (%s)\n", pv.name.c_str(), pv.variant.model.c_str());
-    // A rung that runs away under error control shrinks its steps instead of
-    // leaving its bounds: it stops at 20× the reference's steps (outcome max_steps).
-    const RecordedRun run = timed_runs(vs, pv.variant.model, vr, c.repeats, 20 * reference_steps + 1000);
-    FidelityRow row = row_of(pv, run);
-    tally.fill(row, ref);
-    row.energy_diff_J = max_energy_difference(run, ref);
-    add_time_error(row, vs, pv.variant.model, run, c);
-    if (c.progress)
-      std::fprintf(stderr,
-                   "  %s: %s, %d DoFs, CPU %.3g s, worst-frame RMS %.3g mm, max %.3g mm; own time error %.3g mm\n",
-                   pv.name.c_str(), row.outcome.c_str(), row.dofs, row.cpu_s, 1e3 * row.worst_frame_rms_m,
-                   1e3 * row.max_m, 1e3 * row.time_error_worst_frame_rms_m);
-    out.rows.push_back(row);
-  }
+// 2. One variant, measured against the reference frame by frame as it runs.
+FidelityRow variant_row(const FidelityConfig& c, const PlannedVariant& pv, const ComparedPoints& compared,
+                        const RecordOptions& rec, const ReferenceFrames& ref, long reference_steps) {
+  const Scene& vs = pv.variant.scene;
+  const bool continuum = pv.variant.model == "fem";
+  std::unique_ptr<FemModel> geometry = continuum ? std::make_unique<FemModel>(vs) : nullptr;
+  DistanceTally tally;
+  size_t k = 0;
+  RecordOptions vr = rec;
+  vr.label = pv.name;
+  vr.on_frame = [&](const Frame& f) {
+    if (k >= ref.x.size()) return;
+    tally.add_frame(continuum ? surface_distances(*geometry, f.points, ref.x[k], ref.uv[k])
+                              : crossing_distances(compared.points(f), ref.x[k]));
+    ++k;
+  };
+  if (c.progress) std::fprintf(stderr, "fidelity: %s (%s)\n", pv.name.c_str(), pv.variant.model.c_str());
+  // A rung that runs away under error control shrinks its steps instead of
+  // leaving its bounds: it stops at 20× the reference's steps (outcome max_steps).
+  const RecordedRun run = timed_runs(vs, pv.variant.model, vr, c.repeats, 20 * reference_steps + 1000);
+  FidelityRow row = row_of(pv, run);
+  tally.fill(row, ref);
+  row.energy_diff_J = max_energy_difference(run, ref);
+  add_time_error(row, vs, pv.variant.model, run, c);
+  if (c.progress)
+    std::fprintf(stderr,
+                 "  %s: %s, %d DoFs, CPU %.3g s, worst-frame RMS %.3g mm, max %.3g mm; own time error %.3g mm\n",
+                 pv.name.c_str(), row.outcome.c_str(), row.dofs, row.cpu_s, 1e3 * row.worst_frame_rms_m,
+                 1e3 * row.max_m, 1e3 * row.time_error_worst_frame_rms_m);
+  return row;
+}
 
+// The Pareto front of the complete rows (CPU time against worst-frame distance) and the cheapest
+// variant within the tolerance, 1 % and 5 % of the cloth size.
+void mark_front_and_choices(const FidelityPlan& p, FidelityResult& out) {
   std::vector<double> cost, error;
   std::vector<size_t> complete;
   for (size_t i = 0; i < out.rows.size(); ++i)
@@ -368,54 +361,65 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   out.within_tolerance = cheapest_within(out.rows, p.tolerance_m);
   out.within_1_percent = cheapest_within(out.rows, 0.01 * p.cloth_size_m);
   out.within_5_percent = cheapest_within(out.rows, 0.05 * p.cloth_size_m);
-  out.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
-  // 3. Files.
-  std::filesystem::create_directories(c.out_dir);
-  CsvTable csv(c.out_dir / "fidelity.csv",
+Json row_json(const FidelityRow& r) {
+  Json j = Json::object();
+  j.set("variant", r.variant);
+  j.set("model", r.model);
+  j.set("outcome", r.outcome);
+  j.set("message", r.message);
+  j.set("dofs", r.dofs);
+  j.set("steps", r.steps);
+  j.set("cpu_s", r.cpu_s);
+  j.set("wall_s", r.wall_s);
+  j.set("rms_m", r.rms_m);
+  j.set("worst_frame_rms_m", r.worst_frame_rms_m);
+  j.set("max_m", r.max_m);
+  j.set("energy_diff_J", r.energy_diff_J);
+  j.set("compared_fraction", r.compared_fraction);
+  if (!r.time_error_method.empty()) {
+    Json te = Json::object();
+    te.set("method", r.time_error_method);
+    te.set("mean_rms_m", r.time_error_mean_rms_m);
+    te.set("worst_frame_rms_m", r.time_error_worst_frame_rms_m);
+    j.set("time_error", std::move(te));
+  }
+  j.set("on_front", r.on_front);
+  if (!r.same_as_full.empty()) j.set("same_as_full", r.same_as_full);
+  return j;
+}
+
+// fidelity.csv; the rows of fidelity.json.
+Json write_fidelity_csv(const std::filesystem::path& out_dir, const std::vector<FidelityRow>& rows) {
+  CsvTable csv(out_dir / "fidelity.csv",
                {"variant", "model", "dofs", "steps", "cpu_s", "wall_s", "rms_m", "worst_frame_rms_m", "max_m",
                 "energy_diff_J", "compared_fraction", "time_error_method", "time_error_mean_rms_m",
                 "time_error_worst_frame_rms_m", "outcome", "on_front", "same_as_full"});
-  Json rows = Json::array();
-  for (const FidelityRow& r : out.rows) {
+  Json records = Json::array();
+  for (const FidelityRow& r : rows) {
     csv.row({r.variant, r.model, std::to_string(r.dofs), std::to_string(r.steps), csv_number(r.cpu_s),
              csv_number(r.wall_s), csv_number(r.rms_m), csv_number(r.worst_frame_rms_m), csv_number(r.max_m),
              csv_number(r.energy_diff_J), csv_number(r.compared_fraction), r.time_error_method,
              csv_number(r.time_error_mean_rms_m), csv_number(r.time_error_worst_frame_rms_m), r.outcome,
              r.on_front ? "1" : "0", r.same_as_full});
-    Json j = Json::object();
-    j.set("variant", r.variant);
-    j.set("model", r.model);
-    j.set("outcome", r.outcome);
-    j.set("message", r.message);
-    j.set("dofs", r.dofs);
-    j.set("steps", r.steps);
-    j.set("cpu_s", r.cpu_s);
-    j.set("wall_s", r.wall_s);
-    j.set("rms_m", r.rms_m);
-    j.set("worst_frame_rms_m", r.worst_frame_rms_m);
-    j.set("max_m", r.max_m);
-    j.set("energy_diff_J", r.energy_diff_J);
-    j.set("compared_fraction", r.compared_fraction);
-    if (!r.time_error_method.empty()) {
-      Json te = Json::object();
-      te.set("method", r.time_error_method);
-      te.set("mean_rms_m", r.time_error_mean_rms_m);
-      te.set("worst_frame_rms_m", r.time_error_worst_frame_rms_m);
-      j.set("time_error", std::move(te));
-    }
-    j.set("on_front", r.on_front);
-    if (!r.same_as_full.empty()) j.set("same_as_full", r.same_as_full);
-    rows.push(std::move(j));
+    records.push(row_json(r));
   }
   csv.commit();
+  return records;
+}
+
+// 3. Files: fidelity.csv and fidelity.json.
+void write_fidelity(const FidelityConfig& c, const FidelityPlan& p, const FidelityResult& out) {
+  std::filesystem::create_directories(c.out_dir);
+  Json rows = write_fidelity_csv(c.out_dir, out.rows);
   Json left_out = Json::array();
   for (const auto& [name, why] : p.left_out) left_out.push(Json::object().set("variant", name).set("reason", why));
   Json j = Json::object();
   j.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, c.overrides));
   j.set("scene_hash", text_hash(c.scene.text));
   j.set("reference", p.reference.name);
-  j.set("resolution", c.resolution.describe() + " for the reference and the model rungs; the time rungs at their own");
+  j.set("resolution", c.time_steps.describe() + " for the reference and the model rungs; the time rungs at their own");
   j.set("time_errors", c.error_estimate ? "each run's own estimate (docs/models.md §7.8); a variant whose "
                                           "worst-frame time error exceeds the tolerance is not within it"
                                         : "not estimated (--no-error-estimate)");
@@ -433,6 +437,31 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   j.set("created", utc_now());
   add_provenance(j);
   write_file_atomically(c.out_dir / "fidelity.json", j.dump());
+}
+
+}  // namespace
+
+FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  FidelityResult out;
+  for (const auto& [name, why] : p.left_out)  // also with --quiet: what the ladder lacks
+    std::fprintf(stderr, "fidelity: %s left out: %s\n", name.c_str(), why.c_str());
+  ReferenceFrames ref;
+  const ComparedPoints compared(c.scene);
+  RecordOptions rec;
+  rec.progress = c.progress;
+  rec.energies = true;
+  rec.label = p.reference.name;
+  rec.step_ends = true;  // for the Richardson time-error estimate
+  out.rows.push_back(reference_row(c, p, compared, rec, ref));
+  const long reference_steps = out.rows.front().steps;
+  if (!c.reference_only)  // every variant (none after --reference-only)
+    for (const PlannedVariant& pv : p.variants)
+      out.rows.push_back(variant_row(c, pv, compared, rec, ref, reference_steps));
+  mark_front_and_choices(p, out);
+  out.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  write_fidelity(c, p, out);
   return out;
 }
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "driver/fidelity_variants.h"
-#include "driver/resolution.h"
+#include "driver/time_steps.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -32,7 +32,7 @@ struct FidelityConfig {
   std::optional<std::filesystem::path> fem_params;  // calibrated continuum parameters
   std::optional<double> tolerance_m;                // absent: 1 % of the cloth size
   int repeats = 1;                                  // runs per variant; CPU and wall time are their medians
-  Resolution resolution;                            // of the reference and the model rungs
+  TimeSteps time_steps;                             // of the reference and the model rungs
   bool error_estimate = true;                       // each run's time error beside its distance
   std::filesystem::path out_dir;
   bool progress = true;

@@ -45,7 +45,7 @@ bool get_row(std::istream& in, FidelityRow& r) {
 
 std::string fidelity_reference_key(const FidelityConfig& c) {
   std::ostringstream key;
-  key << "weavelab fidelity reference v1\nreference=" << c.reference << "\nresolution=" << c.resolution.describe()
+  key << "weavelab fidelity reference v1\nreference=" << c.reference << "\nresolution=" << c.time_steps.describe()
       << "\n";
   for (const auto& [k, v] : c.overrides) key << "override " << k << "=" << v << "\n";  // std::map: sorted
   key << "scene:\n" << c.scene.text;
@@ -82,7 +82,7 @@ FidelityReference read_fidelity_reference(const std::filesystem::path& dir, cons
   if (!in || std::memcmp(magic, kMagic, 8) != 0) throw fail("not a fidelity reference file");
   std::string stored;
   if (!get_string(in, stored)) throw fail("truncated");
-  if (stored != key) throw fail("written for another scene, overrides, reference or resolution than this command's");
+  if (stored != key) throw fail("written for another scene, overrides, reference or time steps than this command's");
   FidelityReference ref;
   std::uint64_t frames = 0, crossings = 0;
   if (!get_row(in, ref.row) || !get(in, frames) || !get(in, crossings) || frames > (1u << 24) || crossings > (1u << 24))

@@ -32,7 +32,7 @@ struct FidelityReference {
 };
 
 // What the frames depend on: the scene text, the command-line overrides, the
-// reference variant and the comparison's resolution.
+// reference variant and the comparison's time steps.
 std::string fidelity_reference_key(const FidelityConfig& config);
 
 // <dir>/reference.bin, written atomically. Format (little-endian, as held here):
@@ -46,7 +46,7 @@ void write_fidelity_reference(const std::filesystem::path& dir, const std::strin
 
 // Reads <dir>/reference.bin; throws std::invalid_argument naming the file when
 // it is missing, not such a file, or written for another key (another scene,
-// overrides, reference or resolution).
+// overrides, reference or time steps).
 FidelityReference read_fidelity_reference(const std::filesystem::path& dir, const std::string& key);
 
 // The frames a reference of the scene has: one at each output time, each of

@@ -4,6 +4,7 @@
 
 #include "driver/calibrate.h"
 #include "models/fem/knit_contact_mesh.h"
+#include "models/model_factory.h"
 
 namespace wl {
 namespace {
@@ -37,7 +38,7 @@ const std::vector<std::string>& fidelity_variant_names() {
 }
 
 VariantScene variant_scene(const Scene& scene, const std::string& name, const std::optional<FemMaterial>& calibrated) {
-  VariantScene v{scene, "yarn", "", ""};
+  VariantScene v{scene, yarn_level_model(scene), "", ""};
   Scene& s = v.scene;
   if (name == "full") return v;
   // A knit has no friction, parallel contact or shear term (docs/models.md §11.4).

@@ -13,7 +13,7 @@
 //   sdirk2_rtol_1e-3     sdirk2 under error control at rtol 1e-3
 // On a knit the continuum lies on the contact grid (docs/models.md §11.9): fem_sK where K divides its
 // spacings and hits every pin and handle, fem_first_guess never (no first guess from the yarn).
-// The model rungs run at the comparison's resolution (driver/resolution.h),
+// The model rungs run at the comparison's time steps (driver/time_steps.h),
 // the time rungs at their own.
 #pragma once
 #include <optional>
@@ -30,14 +30,14 @@ const std::vector<std::string>& fidelity_variant_names();
 
 struct VariantScene {
   Scene scene;
-  std::string model;  // "yarn" or "fem"
+  std::string model;  // the scene's yarn level (yarn_level_model: "yarn" or "knit") or "fem"
   // Why the variant cannot be built for this scene ("" when it can): a stride
   // that does not fit the grid, calibrated variants without parameters.
   std::string impossible;
   // Why the variant is the scene's own yarn model under another name ("" when
   // it simplifies something), e.g. no_friction where sliding is frozen.
   std::string same_as_full;
-  bool time_rung = false;  // runs at its own integrator and step, not at the comparison's resolution
+  bool time_rung = false;  // runs at its own integrator and step, not at the comparison's time steps
 };
 
 // The scene of variant `name`; `calibrated` holds the calibrated continuum

@@ -5,15 +5,16 @@
 
 #include "calibration/scene_parameters.h"
 #include "driver/experiment_meta.h"
-#include "driver/resolution.h"
 #include "driver/time_error.h"
+#include "driver/time_steps.h"
+#include "models/common/self_contact.h"
+#include "models/fem/fem_material.h"
+#include "models/fem/knit_contact_mesh.h"
+#include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/csv_table.h"
 #include "output/json_writer.h"
 #include "output/run_reader.h"
-#include "models/common/self_contact.h"
-#include "models/fem/fem_material.h"
-#include "models/fem/knit_contact_mesh.h"
 
 namespace wl {
 namespace {
@@ -68,17 +69,29 @@ Json fit_error_budget(const FitCommandConfig& c, const FitCommandPlan& p, const 
   return b;
 }
 
+// The configuration with the model the plan chose (the scene's yarn level for an empty one).
+FitCommandConfig with_model(FitCommandConfig c, const FitCommandPlan& p) {
+  c.fit.model = p.model;
+  return c;
+}
+
 }  // namespace
 
 FitCommandPlan plan_fit(const FitCommandConfig& c) {
   FitCommandPlan p;
   p.scene = load_scene(c.scene_path.string());
   refuse_self_contact(p.scene, "fit (its forward sensitivities)");
-  if (!c.resolution.scene) {
+  p.model = c.fit.model.empty() ? yarn_level_model(p.scene) : c.fit.model;
+  try {
+    check_model_for_scene(p.scene, p.model);
+  } catch (const std::invalid_argument& e) {
+    throw TrajectoryFitError(std::string("--model: ") + e.what());
+  }
+  if (!c.time_steps.scene) {
     if (!c.fit.integrator.empty() && c.fit.integrator != "sdirk2")
       throw TrajectoryFitError("--integrator: got '" + c.fit.integrator +
-                               "', the controlled resolution runs sdirk2 (use --resolution scene for another)");
-    p.scene = at_resolution(p.scene, c.resolution);
+                               "', --time-steps controlled runs sdirk2 (use --time-steps scene for another)");
+    p.scene = at_time_steps(p.scene, c.time_steps);
   }
   if (!c.fem_params.empty()) {
     p.scene.fem.parameter_file = c.fem_params;
@@ -96,7 +109,7 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
   }
   // A yarn-level knit run observed by the knit's continuum: its stitch contacts, each the midpoint
   // of its two nodes at the contact's material point (docs/models.md §11.9).
-  if (p.scene.knit && c.fit.model == "fem" && !p.target.empty()) {
+  if (p.scene.knit && p.model == "fem" && !p.target.empty()) {
     const std::vector<KnitGridContact> contacts = knit_grid_contacts(p.scene);
     if (p.target.front().points.rows() == 2 * static_cast<Eigen::Index>(contacts.size()))
       for (TargetFrame& t : p.target) {
@@ -113,16 +126,21 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
   return p;
 }
 
-TrajectoryFitResult run_fit(const FitCommandConfig& c, const FitCommandPlan& p) {
+TrajectoryFitResult run_fit(const FitCommandConfig& config, const FitCommandPlan& p) {
+  const FitCommandConfig c = with_model(config, p);
   const TrajectoryFitResult r = fit_trajectory(p.scene, p.target, c.fit);
   write_fit(c, p, r);
   return r;
 }
 
-std::vector<TrajectoryFitResult> run_fits(const std::vector<FitCommandConfig>& starts, const FitCommandPlan& p,
+std::vector<TrajectoryFitResult> run_fits(const std::vector<FitCommandConfig>& configs, const FitCommandPlan& p,
                                           int jobs) {
+  std::vector<FitCommandConfig> starts;
   std::vector<TrajectoryFitOptions> fits;
-  for (const FitCommandConfig& c : starts) fits.push_back(c.fit);
+  for (const FitCommandConfig& c : configs) {
+    starts.push_back(with_model(c, p));
+    fits.push_back(starts.back().fit);
+  }
   const std::vector<TrajectoryFitResult> r = fit_trajectories(p.scene, p.target, fits, jobs);
   for (size_t k = 0; k < starts.size(); ++k) write_fit(starts[k], p, r[k]);
   return r;
@@ -136,7 +154,7 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
   j.set("target", c.target_dir.string());
   j.set("model", c.fit.model);
   j.set("integrator", c.fit.integrator.empty() ? p.scene.integrator : c.fit.integrator);
-  j.set("resolution", c.resolution.describe());
+  j.set("resolution", c.time_steps.describe());
   j.set("frames", static_cast<int>(p.target.size()));
   j.set("observed_points", r.observed_points);
   Json params = Json::array();

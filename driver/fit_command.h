@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "calibration/trajectory_fit.h"
-#include "driver/resolution.h"
+#include "driver/time_steps.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -25,9 +25,9 @@ struct FitCommandConfig {
   std::filesystem::path scene_path, target_dir, out_dir;
   int frames = 0;          // the target's first N frames after t = 0; 0 = all
   std::string fem_params;  // replaces the scene's [fem] parameter_file when given
-  // The simulations' resolution (docs/models.md §7.11): by default the scene's
+  // The simulations' time steps (docs/models.md §7.11): by default the scene's
   // integrator and step, as the published fit; controlled: sdirk2 under error control.
-  Resolution resolution{.scene = true};
+  TimeSteps time_steps{.scene = true};
   TrajectoryFitOptions fit;
 };
 
@@ -36,6 +36,7 @@ struct FitCommandConfig {
 struct FitCommandPlan {
   Scene scene;
   std::vector<TargetFrame> target;
+  std::string model;  // config.fit.model, or the scene's yarn level when that is empty
 };
 FitCommandPlan plan_fit(const FitCommandConfig& config);
 
@@ -44,7 +45,7 @@ TrajectoryFitResult run_fit(const FitCommandConfig& config, const FitCommandPlan
 // at a time (calibration/trajectory_fit.h: each as run_fit would give it).
 std::vector<TrajectoryFitResult> run_fits(const std::vector<FitCommandConfig>& starts, const FitCommandPlan& plan,
                                           int jobs);
-// Writes one fit's outputs into config.out_dir.
+// Writes one fit's outputs into config.out_dir (config.fit.model as resolved in plan.model).
 void write_fit(const FitCommandConfig& config, const FitCommandPlan& plan, const TrajectoryFitResult& result);
 
 }  // namespace wl

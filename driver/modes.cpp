@@ -6,16 +6,16 @@
 #include <stdexcept>
 
 #include "driver/experiment_meta.h"
-#include "output/atomic_file.h"
-#include "output/csv_table.h"
-#include "output/json_writer.h"
-#include "output/vtu_writer.h"
 #include "integrators/integrator.h"
 #include "models/common/self_contact.h"
 #include "models/fem/fem_material.h"
 #include "models/fem/fem_model.h"
 #include "models/model_factory.h"
 #include "models/yarn/yarn_model.h"
+#include "output/atomic_file.h"
+#include "output/csv_table.h"
+#include "output/json_writer.h"
+#include "output/vtu_writer.h"
 
 namespace wl {
 namespace {
@@ -280,7 +280,8 @@ ModesResult run_modes(const ModesConfig& c) {
   if (c.fem_params) fem_scene.fem.parameter_file = c.fem_params->string();
   (void)fem_material(fem_scene);  // a bad file: FemParameterError, before anything is written
   const std::vector<NodeRef> crossings = compared_crossings(fem_scene);
-  std::unique_ptr<Model> yarn = make_model(yarn_scene, "yarn"), fem = make_model(fem_scene, "fem");
+  std::unique_ptr<Model> yarn = make_model(yarn_scene, yarn_level_model(yarn_scene)),
+                         fem = make_model(fem_scene, "fem");
   const int most = static_cast<int>(std::min(yarn->num_dofs() - yarn->fixed_dofs().size(),
                                              fem->num_dofs() - fem->fixed_dofs().size())) -
                    1;

@@ -79,138 +79,99 @@ SettledBalance settled_balance(const Scene& scene, Model& model, double t, const
   return b;
 }
 
-}  // namespace
+// With time.accuracy_m set: the integrator and tolerance chosen for it (trial runs in memory),
+// set into `scene`; nothing otherwise.
+std::optional<AccuracyChoice> choose_time_steps(Scene& scene, const std::string& model_name, bool progress) {
+  if (!(scene.accuracy_m > 0.0)) return std::nullopt;
+  (void)make_model(scene, model_name);  // a model the scene cannot build fails before the trials
+  if (progress)
+    std::fprintf(stderr, "weavelab: choosing the integrator and tolerance for a time error of %g m\n",
+                 scene.accuracy_m);
+  AccuracyChoice accuracy = choose_for_accuracy(scene, model_name, scene.accuracy_m, progress);
+  scene.integrator = accuracy.integrator;
+  scene.adaptive = true;
+  scene.rtol = accuracy.rtol;
+  scene.atol = accuracy.atol;
+  scene.error_estimate = false;  // the chosen trial's estimate is this run's (the same steps)
+  return accuracy;
+}
 
-RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
-  check_run_memory(scene_in, options.model);
-  std::optional<AccuracyChoice> accuracy;
-  Scene scene = scene_in;
-  if (scene.accuracy_m > 0.0) {
-    (void)make_model(scene, options.model);  // a model the scene cannot build fails before the trials
-    if (options.progress)
-      std::fprintf(stderr, "weavelab: choosing the integrator and tolerance for a time error of %g m\n",
-                   scene.accuracy_m);
-    accuracy = choose_for_accuracy(scene, options.model, scene.accuracy_m, options.progress);
-    scene.integrator = accuracy->integrator;
-    scene.adaptive = true;
-    scene.rtol = accuracy->rtol;
-    scene.atol = accuracy->atol;
-    scene.error_estimate = false;  // the chosen trial's estimate is this run's (the same steps)
-  }
-  auto model = make_model(scene, options.model);
-  check_linear_solver(scene, *model, options.overrides);
-  auto integrator = make_integrator(scene.integrator);
+IntegratorOptions run_integrator_options(const Scene& scene) {
   IntegratorOptions iopt;
   iopt.linear_solver = parse_linear_solver(scene.linear_solver);
   iopt.dt = scene.dt_s;
   iopt.adaptive = scene.adaptive;
   iopt.rtol = scene.rtol;
   iopt.atol = scene.atol;
+  return iopt;
+}
 
-  const bool writes = !options.out_dir.empty();
+// The files of a run folder, open while the run writes them (none for a run in memory).
+struct RunFiles {
   std::optional<RunFolder> folder;
   std::optional<PvdSeries> series;
   std::optional<MetricsCsv> metrics;
-  if (writes) {
-    folder.emplace(options.out_dir, written_by_a_run);
-    series.emplace(options.out_dir, "run");
-    metrics.emplace(options.out_dir / "metrics.csv",
-                    std::vector<std::string>{"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters",
-                                             "step_wall_s"});
-  }
   // The rigid obstacles, a second series beside the cloth's (docs/models.md §3.11.5).
   // With them, the cloth's self-intersecting triangle pairs per frame (CGAL, docs/models.md §3.11.7).
   std::optional<PvdSeries> obstacle_series;
   std::optional<MetricsCsv> intersections;
-  if (writes && model->obstacle_frame(0.0).points.rows() > 0) {
-    obstacle_series.emplace(options.out_dir, "obstacles");
-    intersections.emplace(options.out_dir / "self_intersections.csv",
-                          std::vector<std::string>{"time_s", "intersecting_triangle_pairs"});
+
+  RunFiles(const std::filesystem::path& out_dir, const Model& model) {
+    if (out_dir.empty()) return;
+    folder.emplace(out_dir, written_by_a_run);
+    series.emplace(out_dir, "run");
+    metrics.emplace(out_dir / "metrics.csv",
+                    std::vector<std::string>{"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters",
+                                             "step_wall_s"});
+    if (model.obstacle_frame(0.0).points.rows() > 0) {
+      obstacle_series.emplace(out_dir, "obstacles");
+      intersections.emplace(out_dir / "self_intersections.csv",
+                            std::vector<std::string>{"time_s", "intersecting_triangle_pairs"});
+    }
   }
-  if (options.progress)
-    std::fprintf(stderr, "weavelab: %s model, %d DoFs, %s, dt = %g s, %g s simulated -> %s\n", model->name().c_str(),
-                 model->num_dofs(), scene.integrator.c_str(), scene.dt_s, scene.duration_s,
-                 options.out_dir.string().c_str());
+};
 
-  Progress progress(options.progress, scene.duration_s);
-  RecordedRun record;  // what the time error estimate needs: step ends and node positions at the frames
-  auto keep_frame = [&](const Frame& f) {
-    if (!scene.error_estimate || f.time == 0.0) return;
-    const Eigen::Index rows = static_cast<Eigen::Index>(f.points.size());
-    record.trajectory.positions.conservativeResize(rows, record.trajectory.positions.cols() + 1);
-    record.trajectory.positions.col(record.trajectory.positions.cols() - 1) =
-        Eigen::Map<const Eigen::VectorXd>(f.points.data(), rows);
-    record.trajectory.times.push_back(f.time);
-  };
-  auto add_frame = [&](Frame f) {
-    keep_frame(f);
-    if (series) series->add(f);
-    if (options.on_frame) options.on_frame(f);
-    if (obstacle_series) obstacle_series->add(model->obstacle_frame(f.time));
-    if (intersections) intersections->row({f.time, double(count_self_intersections(f))});
-  };
-  integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
-  Evaluation scratch;
-  auto metrics_row = [&](double t, int iters, double wall) {
-    if (!metrics) return;
-    const Vec& q = integrator->q();
-    const Vec& v = integrator->v();
-    metrics->row({t, model->kinetic_energy(t, q, v, scratch), model->potential_energy(q), max_node_speed(*model, v),
-                  double(iters), wall});
-  };
-  integrator->on_step = [&](const StepRecord& r) {
-    metrics_row(r.t, r.nonlinear_iters, r.wall_s);
-    if (scene.error_estimate) record.step_ends.push_back(r.t);
-    progress.update(r.t, integrator->stats().steps);
-    if (interrupt_signal()) throw Interrupted{};
-  };
-
-  RunReport rep;
-  metrics_row(0.0, 0, 0.0);
-  add_frame(model->frame(0.0, integrator->q(), integrator->v()));
-  rep.frames = 1;
-  const int outputs = static_cast<int>(std::llround(scene.duration_s / scene.output_interval_s));
-  // The settling phase: steps of settle_dt_s from settle_after_s on.
+// Steps to the scene's duration, a frame at each output time: the outcome and the frame count.
+// The settling phase (time.settle_dt_s): steps of settle_dt_s from settle_after_s on.
+void step_to_duration(const Scene& scene, Model& model, Integrator& integrator,
+                      const std::function<void(Frame)>& add_frame, RunReport& rep) {
   bool settling = false;
   auto advance = [&](double t_out) {
     if (interrupt_signal()) return interrupted_result();
     try {
       if (scene.settle_dt_s > 0.0 && !settling && t_out > scene.settle_after_s) {
-        if (integrator->t() < scene.settle_after_s) {
-          const StepResult r = integrator->advance_to(scene.settle_after_s);
+        if (integrator.t() < scene.settle_after_s) {
+          const StepResult r = integrator.advance_to(scene.settle_after_s);
           if (r.outcome != Outcome::ok) return r;
         }
-        integrator->set_fixed_step(scene.settle_dt_s);
+        integrator.set_fixed_step(scene.settle_dt_s);
         settling = true;
       }
-      return integrator->advance_to(t_out);
+      return integrator.advance_to(t_out);
     } catch (const Interrupted&) {
       return interrupted_result();
     }
   };
+  const int outputs = static_cast<int>(std::llround(scene.duration_s / scene.output_interval_s));
   for (int k = 1; k <= outputs; ++k) {
     const double t_out = std::min(scene.duration_s, k * scene.output_interval_s);
     rep.result = advance(t_out);
     if (rep.result.outcome != Outcome::ok) break;
-    add_frame(model->frame(integrator->t(), integrator->q(), integrator->v()));
+    add_frame(model.frame(integrator.t(), integrator.q(), integrator.v()));
     ++rep.frames;
   }
-  if (rep.result.outcome == Outcome::ok && integrator->t() < scene.duration_s - 1e-12) {
+  if (rep.result.outcome == Outcome::ok && integrator.t() < scene.duration_s - 1e-12) {
     rep.result = advance(scene.duration_s);
     if (rep.result.outcome == Outcome::ok) {
-      add_frame(model->frame(integrator->t(), integrator->q(), integrator->v()));
+      add_frame(model.frame(integrator.t(), integrator.q(), integrator.v()));
       ++rep.frames;
     }
   }
-  progress.update(integrator->t(), integrator->stats().steps, true);
-  if (metrics) metrics->commit();
-  if (intersections) intersections->commit();
-  rep.stats = integrator->stats();
-  rep.end_time = integrator->t();
-  if (scene.settle_dt_s > 0.0 && rep.result.outcome == Outcome::ok)
-    rep.settled = settled_balance(scene, *model, integrator->t(), integrator->q(), integrator->v());
-  rep.accuracy = std::move(accuracy);
-  if (rep.accuracy) rep.time_error = rep.accuracy->estimate;
+}
+
+// Scene key time.error_estimate: the time error of a run that ended ok, from a second run.
+void estimate_run_time_error(const Scene& scene, const RunOptions& options, const IntegratorOptions& iopt,
+                             RecordedRun& record, RunReport& rep) {
   if (scene.error_estimate && rep.result.outcome == Outcome::ok) {
     if (options.progress) std::fprintf(stderr, "weavelab: estimating the time error (a second run)\n");
     record.stats = rep.stats;
@@ -228,8 +189,76 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
       std::fprintf(stderr, "weavelab: no time error estimate: the second run ended %s: %s\n",
                    to_string(rep.time_error->second_run.outcome), rep.time_error->second_run.message.c_str());
   }
+}
+
+}  // namespace
+
+RunReport run_scene(const Scene& scene_in, const RunOptions& options_in) {
+  RunOptions options = options_in;
+  if (options.model.empty()) options.model = yarn_level_model(scene_in);
+  check_run_memory(scene_in, options.model);
+  Scene scene = scene_in;
+  std::optional<AccuracyChoice> accuracy = choose_time_steps(scene, options.model, options.progress);
+  auto model = make_model(scene, options.model);
+  check_linear_solver(scene, *model, options.overrides);
+  auto integrator = make_integrator(scene.integrator);
+  const IntegratorOptions iopt = run_integrator_options(scene);
+  RunFiles files(options.out_dir, *model);
+  if (options.progress)
+    std::fprintf(stderr, "weavelab: %s model, %d DoFs, %s, dt = %g s, %g s simulated -> %s\n", model->name().c_str(),
+                 model->num_dofs(), scene.integrator.c_str(), scene.dt_s, scene.duration_s,
+                 options.out_dir.string().c_str());
+
+  Progress progress(options.progress, scene.duration_s);
+  RecordedRun record;  // what the time error estimate needs: step ends and node positions at the frames
+  auto keep_frame = [&](const Frame& f) {
+    if (!scene.error_estimate || f.time == 0.0) return;
+    const Eigen::Index rows = static_cast<Eigen::Index>(f.points.size());
+    record.trajectory.positions.conservativeResize(rows, record.trajectory.positions.cols() + 1);
+    record.trajectory.positions.col(record.trajectory.positions.cols() - 1) =
+        Eigen::Map<const Eigen::VectorXd>(f.points.data(), rows);
+    record.trajectory.times.push_back(f.time);
+  };
+  auto add_frame = [&](Frame f) {
+    keep_frame(f);
+    if (files.series) files.series->add(f);
+    if (options.on_frame) options.on_frame(f);
+    if (files.obstacle_series) files.obstacle_series->add(model->obstacle_frame(f.time));
+    if (files.intersections) files.intersections->row({f.time, double(count_self_intersections(f))});
+  };
+  integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
+  Evaluation scratch;
+  auto metrics_row = [&](double t, int iters, double wall) {
+    if (!files.metrics) return;
+    const Vec& q = integrator->q();
+    const Vec& v = integrator->v();
+    files.metrics->row({t, model->kinetic_energy(t, q, v, scratch), model->potential_energy(q),
+                        max_node_speed(*model, v), double(iters), wall});
+  };
+  integrator->on_step = [&](const StepRecord& r) {
+    metrics_row(r.t, r.nonlinear_iters, r.wall_s);
+    if (scene.error_estimate) record.step_ends.push_back(r.t);
+    progress.update(r.t, integrator->stats().steps);
+    if (interrupt_signal()) throw Interrupted{};
+  };
+
+  RunReport rep;
+  metrics_row(0.0, 0, 0.0);
+  add_frame(model->frame(0.0, integrator->q(), integrator->v()));
+  rep.frames = 1;
+  step_to_duration(scene, *model, *integrator, add_frame, rep);
+  progress.update(integrator->t(), integrator->stats().steps, true);
+  if (files.metrics) files.metrics->commit();
+  if (files.intersections) files.intersections->commit();
+  rep.stats = integrator->stats();
+  rep.end_time = integrator->t();
+  if (scene.settle_dt_s > 0.0 && rep.result.outcome == Outcome::ok)
+    rep.settled = settled_balance(scene, *model, integrator->t(), integrator->q(), integrator->v());
+  rep.accuracy = std::move(accuracy);
+  if (rep.accuracy) rep.time_error = rep.accuracy->estimate;
+  estimate_run_time_error(scene, options, iopt, record, rep);
   rep.summary_json = run_summary_json(scene, options, *model, *integrator, rep);
-  if (writes) write_file_atomically(options.out_dir / "summary.json", rep.summary_json);
+  if (!options.out_dir.empty()) write_file_atomically(options.out_dir / "summary.json", rep.summary_json);
   return rep;
 }
 

@@ -17,7 +17,7 @@
 namespace wl {
 
 struct RunOptions {
-  std::string model = "yarn";
+  std::string model;              // "yarn", "knit" or "fem"; empty: the scene's yarn level (yarn_level_model)
   std::filesystem::path out_dir;  // empty: a run in memory, nothing written (RunReport::summary_json only)
   bool progress = true;
   std::map<std::string, std::string> overrides;  // command-line values that replaced scene values

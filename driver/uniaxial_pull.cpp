@@ -7,13 +7,13 @@
 #include <stdexcept>
 
 #include "calibration/equilibrium.h"
-#include "output/atomic_file.h"
-#include "output/csv_table.h"
-#include "output/json_writer.h"
 #include "models/knit/knit_model.h"
 #include "models/knit/knit_rest_shape.h"
 #include "models/model_factory.h"
 #include "models/yarn/yarn_model.h"
+#include "output/atomic_file.h"
+#include "output/csv_table.h"
+#include "output/json_writer.h"
 
 namespace wl {
 namespace {
@@ -108,7 +108,7 @@ PullResult run_pull(const Scene& scene_in, const PullConfig& config) {
   TermSwitches& on = scene.terms;
   on.gravity = on.wind = on.handles = on.friction = on.inertia = false;
   scene.yarn_viscosity_Pa_s = 0.0;
-  std::unique_ptr<Model> model = make_model(scene, "yarn");
+  std::unique_ptr<Model> model = make_model(scene, yarn_level_model(scene));
   Grips grips;
   if (const auto* k = dynamic_cast<const KnitModel*>(model.get())) grips = knit_grips(*k, config.direction);
   else grips = woven_grips(dynamic_cast<const YarnModel&>(*model), config.direction);

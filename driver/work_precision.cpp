@@ -8,10 +8,10 @@
 #include <stdexcept>
 
 #include "driver/experiment_meta.h"
+#include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/csv_table.h"
 #include "output/json_writer.h"
-#include "models/model_factory.h"
 
 namespace wl {
 
@@ -44,11 +44,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void validate_names(const WorkPrecisionConfig& c) {
-  const auto models = model_names();
-  for (const auto& m : c.models)
-    if (std::find(models.begin(), models.end(), m) == models.end())
-      throw std::invalid_argument("unknown model '" + m + "'");
-  for (const auto& i : c.integrators) (void)make_integrator(i);  // throws for an unknown name
+  for (const auto& m : c.models) check_model_for_scene(c.scene, m);  // unknown, or not the scene's cloth
+  for (const auto& i : c.integrators) (void)make_integrator(i);      // throws for an unknown name
   if (c.rtols.empty()) throw std::invalid_argument("work-precision: no tolerances given");
   if (!(c.dt_max > 0) || !(c.dt_min > 0) || c.dt_min > c.dt_max)
     throw std::invalid_argument("work-precision: need 0 < dt_min <= dt_max");
@@ -97,136 +94,131 @@ Json reference_json(const Reference& r) {
   return j;
 }
 
-}  // namespace
+// Ladders: rtol for error-controlled methods, dt for fixed-step ones, and
+// both for the in-house error-controlled method (sdirk2). (integrator, adaptive) pairs.
+std::vector<std::pair<std::string, bool>> ladders_of(const WorkPrecisionConfig& cfg) {
+  std::vector<std::pair<std::string, bool>> ladders;
+  for (const std::string& integ : cfg.integrators) {
+    const IntegratorCapabilities cap = make_integrator(integ)->capabilities();
+    if (cap.controls_error) ladders.emplace_back(integ, true);
+    if (!cap.controls_error || (cap.replays_steps && cap.fixed_step_order > 0)) ladders.emplace_back(integ, false);
+  }
+  return ladders;
+}
 
-WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
-  WorkPrecisionConfig cfg = cfg_in;
-  if (cfg.integrators.empty()) cfg.integrators = integrator_names();
-  validate_names(cfg);
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::string started = utc_now();
-  WorkPrecisionResult res;
+std::vector<double> rungs_of(const WorkPrecisionConfig& cfg, bool adaptive) {
+  if (adaptive) return cfg.rtols;
+  std::vector<double> rungs;
+  for (double dt = cfg.dt_max; dt >= cfg.dt_min * (1 - 1e-12); dt *= 0.5) rungs.push_back(dt);
+  return rungs;
+}
 
-  std::filesystem::create_directories(cfg.out_dir);
-  CsvTable csv(cfg.out_dir / "work_precision.csv", kWorkPrecisionColumns);
-
-  for (const std::string& model : cfg.models) {
-    if (cfg.progress) std::fprintf(stderr, "work-precision: %s model\n", model.c_str());
-    Reference ref = load_or_compute_reference(cfg.scene, cfg.scene_text, model, cfg.overrides, cfg.reference);
-    if (!ref.meets_requirement()) {
-      const std::string note = "reference for " + model + " is at rtol " + std::to_string(ref.rtol) +
-                               ", looser than the required " + std::to_string(ref.required_rtol);
-      res.notes.push_back(note);
-      std::fprintf(stderr, "work-precision: WARNING: %s\n", note.c_str());
+// One rung's run into row.run: pilots with growing step limits from `step_cap` (see
+// WorkPrecisionConfig::run_budget_cpu_s), then the full run when it is predicted within budget.
+void run_with_pilots(const WorkPrecisionConfig& cfg, const std::string& model, const std::string& integ,
+                     IntegratorOptions opt, long step_cap, WorkPrecisionRow& row) {
+  RecordOptions rec;
+  rec.progress = cfg.progress;
+  rec.speed_bound = cfg.speed_bound;
+  rec.label = model + " " + integ;
+  long cap = step_cap;
+  for (;;) {
+    opt.max_steps = cap;
+    row.run = run_recorded(cfg.scene, model, integ, opt, rec);
+    if (row.run.result.outcome != Outcome::max_steps) break;
+    const double frac = row.run.end_time / cfg.scene.duration_s;
+    const double predicted = frac > 0 ? row.run.cpu_s / frac : std::numeric_limits<double>::infinity();
+    if (predicted <= cfg.run_budget_cpu_s) {
+      if (cfg.progress)
+        std::fprintf(stderr, "    (%ld-step pilot reached t = %g s; rerunning without the limit)\n", cap,
+                     row.run.end_time);
+      opt.max_steps = IntegratorOptions{}.max_steps;
+      row.run = run_recorded(cfg.scene, model, integ, opt, rec);
+      break;
     }
-    // Ladders: rtol for error-controlled methods, dt for fixed-step ones, and
-    // both for the in-house error-controlled method (sdirk2).
-    std::vector<std::pair<std::string, bool>> ladders;
-    for (const std::string& integ : cfg.integrators) {
-      const IntegratorCapabilities cap = make_integrator(integ)->capabilities();
-      if (cap.controls_error) ladders.emplace_back(integ, true);
-      if (!cap.controls_error || (cap.replays_steps && cap.fixed_step_order > 0)) ladders.emplace_back(integ, false);
+    const double per_step = row.run.cpu_s / std::max(1L, row.run.stats.steps);
+    if (per_step * 10.0 * cap > cfg.run_budget_cpu_s) {
+      row.over_budget = true;
+      row.predicted_cpu_s = predicted;
+      row.run.result.message = "stopped at a pilot limit of " + std::to_string(cap) +
+                               " steps at t = " + csv_number(row.run.end_time) + " s after " +
+                               csv_number(row.run.cpu_s) + " s CPU; the full run extrapolates to " +
+                               csv_number(predicted) + " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s";
+      break;
     }
-    for (const auto& [integ, adaptive] : ladders) {
-      std::vector<double> rungs;
-      if (adaptive) rungs = cfg.rtols;
-      else
-        for (double dt = cfg.dt_max; dt >= cfg.dt_min * (1 - 1e-12); dt *= 0.5) rungs.push_back(dt);
-      double prev_cpu = kNaN, last_cpu = kNaN;
-      long step_cap = cfg.pilot_steps;
-      for (size_t k = 0; k < rungs.size(); ++k) {
-        if (std::isfinite(last_cpu)) {
-          const double growth = std::isfinite(prev_cpu) && prev_cpu > 0 ? std::max(1.5, last_cpu / prev_cpu) : 2.0;
-          if (last_cpu * growth > cfg.run_budget_cpu_s) {
-            const std::string note = model + " " + integ + ": ladder stopped before " + (adaptive ? "rtol " : "dt ") +
-                                     csv_number(rungs[k]) + " (predicted " + csv_number(last_cpu * growth) +
-                                     " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s)";
-            res.notes.push_back(note);
-            if (cfg.progress) std::fprintf(stderr, "  %s\n", note.c_str());
-            break;
-          }
-        }
-        WorkPrecisionRow row;
-        row.model = model;
-        row.integrator = integ;
-        row.mode = adaptive ? "adaptive" : "fixed";
-        IntegratorOptions opt;
-        if (adaptive) {
-          opt.adaptive = true;
-          opt.rtol = row.rtol = rungs[k];
-          opt.atol = row.atol = rungs[k] * cfg.atol_per_rtol;
-          opt.dt = cfg.adaptive_initial_dt;
-          row.dt = kNaN;
-        } else {
-          opt.adaptive = false;
-          opt.dt = row.dt = rungs[k];
-          row.rtol = row.atol = kNaN;
-        }
-        RecordOptions rec;
-        rec.progress = cfg.progress;
-        rec.speed_bound = cfg.speed_bound;
-        rec.label = model + " " + integ;
-        // Pilots with growing step limits (see WorkPrecisionConfig::run_budget_cpu_s).
-        long cap = step_cap;
-        for (;;) {
-          opt.max_steps = cap;
-          row.run = run_recorded(cfg.scene, model, integ, opt, rec);
-          if (row.run.result.outcome != Outcome::max_steps) break;
-          const double frac = row.run.end_time / cfg.scene.duration_s;
-          const double predicted = frac > 0 ? row.run.cpu_s / frac : std::numeric_limits<double>::infinity();
-          if (predicted <= cfg.run_budget_cpu_s) {
-            if (cfg.progress)
-              std::fprintf(stderr, "    (%ld-step pilot reached t = %g s; rerunning without the limit)\n", cap,
-                           row.run.end_time);
-            opt.max_steps = IntegratorOptions{}.max_steps;
-            row.run = run_recorded(cfg.scene, model, integ, opt, rec);
-            break;
-          }
-          const double per_step = row.run.cpu_s / std::max(1L, row.run.stats.steps);
-          if (per_step * 10.0 * cap > cfg.run_budget_cpu_s) {
-            row.over_budget = true;
-            row.predicted_cpu_s = predicted;
-            row.run.result.message =
-                "stopped at a pilot limit of " + std::to_string(cap) + " steps at t = " + csv_number(row.run.end_time) +
-                " s after " + csv_number(row.run.cpu_s) + " s CPU; the full run extrapolates to " +
-                csv_number(predicted) + " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s";
-            break;
-          }
-          cap *= 10;
-        }
-        row.error = {kNaN, kNaN};
-        if (row.run.result.outcome == Outcome::ok) row.error = trajectory_error(row.run.trajectory, ref.trajectory);
-        if (cfg.progress)
-          std::fprintf(stderr, "  %-4s %-12s %s %-8s %-14s err rms %.3g m, max %.3g m, %.2f s CPU, %ld steps\n",
-                       model.c_str(), integ.c_str(), adaptive ? "rtol" : "dt  ", csv_number(rungs[k]).c_str(),
-                       row.outcome().c_str(), row.error.rms, row.error.max, row.run.cpu_s, row.run.stats.steps);
-        csv.row(csv_row(row));
-        const Outcome o = row.run.result.outcome;
-        const bool over = row.over_budget;
-        step_cap = std::max(cfg.pilot_steps, 4 * row.run.stats.steps);
-        res.rows.push_back(std::move(row));
-        if (o == Outcome::not_offered) {
-          res.notes.push_back(model + " " + integ + ": not offered: " + res.rows.back().run.result.message);
-          break;
-        }
-        if (over) {
-          res.notes.push_back(model + " " + integ + ": ladder stopped: " + res.rows.back().run.result.message);
-          break;
-        }
-        if (o != Outcome::ok) continue;  // a failed rung's CPU time predicts nothing of the next
-        prev_cpu = last_cpu;
-        last_cpu = res.rows.back().run.cpu_s;
+    cap *= 10;
+  }
+}
+
+// One rung of a ladder: its run and its error against the reference.
+WorkPrecisionRow run_rung(const WorkPrecisionConfig& cfg, const std::string& model, const std::string& integ,
+                          bool adaptive, double rung, long step_cap, const Reference& ref) {
+  WorkPrecisionRow row;
+  row.model = model;
+  row.integrator = integ;
+  row.mode = adaptive ? "adaptive" : "fixed";
+  IntegratorOptions opt;
+  if (adaptive) {
+    opt.adaptive = true;
+    opt.rtol = row.rtol = rung;
+    opt.atol = row.atol = rung * cfg.atol_per_rtol;
+    opt.dt = cfg.adaptive_initial_dt;
+    row.dt = kNaN;
+  } else {
+    opt.adaptive = false;
+    opt.dt = row.dt = rung;
+    row.rtol = row.atol = kNaN;
+  }
+  run_with_pilots(cfg, model, integ, opt, step_cap, row);
+  row.error = {kNaN, kNaN};
+  if (row.run.result.outcome == Outcome::ok) row.error = trajectory_error(row.run.trajectory, ref.trajectory);
+  if (cfg.progress)
+    std::fprintf(stderr, "  %-4s %-12s %s %-8s %-14s err rms %.3g m, max %.3g m, %.2f s CPU, %ld steps\n",
+                 model.c_str(), integ.c_str(), adaptive ? "rtol" : "dt  ", csv_number(rung).c_str(),
+                 row.outcome().c_str(), row.error.rms, row.error.max, row.run.cpu_s, row.run.stats.steps);
+  return row;
+}
+
+// One ladder of a model and integrator, rung by rung until a rung is predicted over
+// the CPU budget, not offered, or over budget; its rows into `csv` and `res`.
+void run_ladder(const WorkPrecisionConfig& cfg, const std::string& model, const std::string& integ, bool adaptive,
+                const Reference& ref, CsvTable& csv, WorkPrecisionResult& res) {
+  const std::vector<double> rungs = rungs_of(cfg, adaptive);
+  double prev_cpu = kNaN, last_cpu = kNaN;
+  long step_cap = cfg.pilot_steps;
+  for (size_t k = 0; k < rungs.size(); ++k) {
+    if (std::isfinite(last_cpu)) {
+      const double growth = std::isfinite(prev_cpu) && prev_cpu > 0 ? std::max(1.5, last_cpu / prev_cpu) : 2.0;
+      if (last_cpu * growth > cfg.run_budget_cpu_s) {
+        const std::string note = model + " " + integ + ": ladder stopped before " + (adaptive ? "rtol " : "dt ") +
+                                 csv_number(rungs[k]) + " (predicted " + csv_number(last_cpu * growth) +
+                                 " s CPU > budget " + csv_number(cfg.run_budget_cpu_s) + " s)";
+        res.notes.push_back(note);
+        if (cfg.progress) std::fprintf(stderr, "  %s\n", note.c_str());
+        break;
       }
     }
-    res.references.emplace(model, std::move(ref));
+    WorkPrecisionRow row = run_rung(cfg, model, integ, adaptive, rungs[k], step_cap, ref);
+    csv.row(csv_row(row));
+    const Outcome o = row.run.result.outcome;
+    const bool over = row.over_budget;
+    step_cap = std::max(cfg.pilot_steps, 4 * row.run.stats.steps);
+    res.rows.push_back(std::move(row));
+    if (o == Outcome::not_offered) {
+      res.notes.push_back(model + " " + integ + ": not offered: " + res.rows.back().run.result.message);
+      break;
+    }
+    if (over) {
+      res.notes.push_back(model + " " + integ + ": ladder stopped: " + res.rows.back().run.result.message);
+      break;
+    }
+    if (o != Outcome::ok) continue;  // a failed rung's CPU time predicts nothing of the next
+    prev_cpu = last_cpu;
+    last_cpu = res.rows.back().run.cpu_s;
   }
-  csv.commit();
-  res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
-  Json j = Json::object();
-  j.set("experiment", "work-precision");
-  j.set("scene", scene_json(cfg.scene_path, cfg.scene_text, cfg.scene, cfg.overrides));
-  j.set("published_dt_s", cfg.scene.dt_s);  // the scene's own step, marked on the chart
+Json parameters_json(const WorkPrecisionConfig& cfg) {
   Json p = Json::object();
   p.set("models", Json(cfg.models));
   p.set("integrators", Json(cfg.integrators));
@@ -249,7 +241,16 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
   rp.set("atol_per_rtol", cfg.reference.atol_per_rtol);
   rp.set("cache_dir", cfg.reference.cache_dir.string());
   p.set("reference", rp);
-  j.set("parameters", p);
+  return p;
+}
+
+void write_work_precision_json(const WorkPrecisionConfig& cfg, const WorkPrecisionResult& res,
+                               const std::string& started) {
+  Json j = Json::object();
+  j.set("experiment", "work-precision");
+  j.set("scene", scene_json(cfg.scene_path, cfg.scene_text, cfg.scene, cfg.overrides));
+  j.set("published_dt_s", cfg.scene.dt_s);  // the scene's own step, marked on the chart
+  j.set("parameters", parameters_json(cfg));
   Json refs = Json::object();
   for (const auto& [m, r] : res.references) refs.set(m, reference_json(r));
   j.set("references", refs);
@@ -262,6 +263,35 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
   j.set("wall_s", res.wall_s);
   add_provenance(j);
   write_file_atomically(cfg.out_dir / "work_precision.json", j.dump());
+}
+
+}  // namespace
+
+WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
+  WorkPrecisionConfig cfg = cfg_in;
+  if (cfg.integrators.empty()) cfg.integrators = integrator_names();
+  validate_names(cfg);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string started = utc_now();
+  WorkPrecisionResult res;
+
+  std::filesystem::create_directories(cfg.out_dir);
+  CsvTable csv(cfg.out_dir / "work_precision.csv", kWorkPrecisionColumns);
+  for (const std::string& model : cfg.models) {
+    if (cfg.progress) std::fprintf(stderr, "work-precision: %s model\n", model.c_str());
+    Reference ref = load_or_compute_reference(cfg.scene, cfg.scene_text, model, cfg.overrides, cfg.reference);
+    if (!ref.meets_requirement()) {
+      const std::string note = "reference for " + model + " is at rtol " + std::to_string(ref.rtol) +
+                               ", looser than the required " + std::to_string(ref.required_rtol);
+      res.notes.push_back(note);
+      std::fprintf(stderr, "work-precision: WARNING: %s\n", note.c_str());
+    }
+    for (const auto& [integ, adaptive] : ladders_of(cfg)) run_ladder(cfg, model, integ, adaptive, ref, csv, res);
+    res.references.emplace(model, std::move(ref));
+  }
+  csv.commit();
+  res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_work_precision_json(cfg, res, started);
   return res;
 }
 

@@ -45,7 +45,7 @@ class KnitModel : public TermModel, public SlidingCoordinates {
   static std::unique_ptr<KnitModel> tile(const Scene& scene, const std::array<double, 2>& period_scale = {1.0, 1.0});
 
   std::unique_ptr<Model> clone() const override { return std::make_unique<KnitModel>(*this); }
-  std::string name() const override { return "yarn"; }
+  std::string name() const override { return "knit"; }
   bool mass_depends_on_q() const override { return scene_.sliding; }
   Frame frame(double t, const Vec& q, const Vec& v) const override;
   // SlidingCoordinates: the nodes' positions (no friction anchors: no history).

@@ -164,6 +164,7 @@ void read_knit_pattern(TableReader& p, Scene& s, KnitPattern::Kind kind) {
 void read_pattern(TableReader& p, Scene& s) {
   int kind = 0;
   p.read_choice("kind", kind, {"plain", "twill", "satin", "stockinette", "garter", "rib2x2"});
+  if (auto v = p.table()["kind"]) s.key_lines[p.key_path("kind")] = line_of(*v.node());  // model_factory's errors
   if (kind >= 3) return read_knit_pattern(p, s, static_cast<KnitPattern::Kind>(kind - 3));
   Pattern& pat = s.pattern;
   pat.kind = static_cast<Pattern::Kind>(kind);

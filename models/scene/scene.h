@@ -156,8 +156,8 @@ struct Scene {
   std::string source;  // file it came from
   std::string text;    // its text, read once at load (what the run simulates)
   // Line of each key written in the file's [time] table ("time.dt_s" → 12) and
-  // of the table itself ("time"), of the [cloth] size keys, of the [fem] table ("fem") and of
-  // damping.yarn_viscosity_Pa_s; absent keys are absent here.
+  // of the table itself ("time"), of the [cloth] size keys and cloth.pattern.kind, of the
+  // [fem] table ("fem") and of damping.yarn_viscosity_Pa_s; absent keys are absent here.
   std::map<std::string, int> key_lines;
 
   // Woven cloth

@@ -10,8 +10,8 @@
 #include <pybind11/stl.h>
 
 #include "driver/experiment_meta.h"
-#include "driver/resolution.h"
 #include "driver/run_settings.h"
+#include "driver/time_steps.h"
 #include "integrators/integrator.h"
 #include "models/model_factory.h"
 #include "python/bindings/errors.h"
@@ -70,7 +70,9 @@ py::dict outcome_dict(const StepResult& r) {
 // A model stepped by an integrator with the scene's [time] settings.
 class Simulation {
  public:
-  Simulation(const SceneHandle& scene, const std::string& model_name) : model_(std::make_shared<ModelHandle>()) {
+  // `model` "" is the scene's yarn level (yarn_level_model).
+  Simulation(const SceneHandle& scene, const std::string& model) : model_(std::make_shared<ModelHandle>()) {
+    const std::string model_name = model.empty() ? yarn_level_model(scene.scene) : model;
     try {
       check_run_settings(scene.scene, {});
     } catch (const SceneError& e) {
@@ -147,14 +149,17 @@ class Simulation {
 
 void bind_model(py::module_& m) {
   py::class_<ModelHandle, std::shared_ptr<ModelHandle>>(
-      m, "Model", "A yarn-level ('yarn') or continuum ('fem') model of a scene (docs/models.md)")
-      .def(py::init([](const SceneHandle& scene, const std::string& kind) {
+      m, "Model",
+      "A yarn-level ('yarn' woven, 'knit' knitted) or continuum ('fem') model of a scene (docs/models.md); "
+      "kind None is the scene's yarn level")
+      .def(py::init([](const SceneHandle& scene, const std::optional<std::string>& given) {
+             const std::string kind = given ? *given : yarn_level_model(scene.scene);
              check_run_memory(scene.scene, kind);
              auto h = std::make_shared<ModelHandle>();
              h->model = make_model(scene.scene, kind);
              return h;
            }),
-           py::arg("scene"), py::arg("kind") = "yarn")
+           py::arg("scene"), py::arg("kind") = py::none())
       .def_property_readonly("name", [](const ModelHandle& h) { return h.model->name(); })
       .def_property_readonly("num_dofs", [](const ModelHandle& h) { return h.model->num_dofs(); })
       .def_property_readonly("initial_q", [](const ModelHandle& h) { return h.model->initial_q(); })
@@ -206,7 +211,7 @@ void bind_model(py::module_& m) {
           py::arg("q"), py::arg("v"), py::arg("t") = 0.0);
 
   py::class_<Simulation>(m, "_Simulation")
-      .def(py::init<const SceneHandle&, const std::string&>(), py::arg("scene"), py::arg("model") = "yarn")
+      .def(py::init<const SceneHandle&, const std::string&>(), py::arg("scene"), py::arg("model") = "")
       .def("advance_to", &Simulation::advance_to, py::arg("t"))
       .def("step", &Simulation::step)
       .def_property_readonly("t", &Simulation::t)

@@ -6,6 +6,7 @@
 
 #include "driver/run.h"
 #include "driver/run_settings.h"
+#include "models/model_factory.h"
 #include "python/bindings/errors.h"
 #include "python/bindings/frames.h"
 #include "python/bindings/interruption.h"
@@ -35,7 +36,7 @@ py::dict run(const SceneHandle& handle, const std::string& model, const std::opt
   ov.accuracy_m = accuracy;
   ov.fem_parameter_file = fem_params;
   RunOptions opt;
-  opt.model = model;
+  opt.model = model.empty() ? yarn_level_model(scene) : model;  // "": the scene's yarn level
   opt.progress = progress;
   try {
     apply_run_overrides(scene, ov, opt.overrides);  // the command line's rules, the forgiving one included
@@ -64,11 +65,11 @@ py::dict run(const SceneHandle& handle, const std::string& model, const std::opt
 }  // namespace
 
 void bind_run(py::module_& m) {
-  m.def("_run", &run, py::arg("scene"), py::arg("model") = "yarn", py::arg("out") = py::none(),
-        py::arg("progress") = false, py::arg("integrator") = py::none(), py::arg("linear_solver") = py::none(),
-        py::arg("dt") = py::none(), py::arg("duration") = py::none(), py::arg("output_interval") = py::none(),
-        py::arg("adaptive") = false, py::arg("rtol") = py::none(), py::arg("error_estimate") = false,
-        py::arg("accuracy") = py::none(), py::arg("fem_params") = py::none());
+  m.def("_run", &run, py::arg("scene"), py::arg("model") = "", py::arg("out") = py::none(), py::arg("progress") = false,
+        py::arg("integrator") = py::none(), py::arg("linear_solver") = py::none(), py::arg("dt") = py::none(),
+        py::arg("duration") = py::none(), py::arg("output_interval") = py::none(), py::arg("adaptive") = false,
+        py::arg("rtol") = py::none(), py::arg("error_estimate") = false, py::arg("accuracy") = py::none(),
+        py::arg("fem_params") = py::none());
 }
 
 }  // namespace wl::python

@@ -15,7 +15,7 @@ bool calibrate(const std::string& scene_path, const std::string& out, const std:
                const std::vector<std::string>& free, int patch,
                const std::map<std::string, std::vector<double>>& ladders, int starts, unsigned seed,
                const std::string& loss, bool sliding, bool border_strip, const std::vector<std::string>& validate,
-               const std::string& resolution, double rtol, bool progress) {
+               const std::string& time_steps, double rtol, bool progress) {
   CalibrateConfig c;
   c.scene_path = scene_path;
   c.out_dir = out;
@@ -29,7 +29,7 @@ bool calibrate(const std::string& scene_path, const std::string& out, const std:
   c.sliding = sliding;
   c.border_strip = border_strip;
   for (const auto& v : validate) c.validate.emplace_back(v);
-  c.resolution = parse_resolution("resolution", resolution, rtol);
+  c.time_steps = parse_time_steps("time_steps", time_steps, rtol);
   c.progress = progress;
   const CalibratePlan plan = plan_calibration(c);  // every input checked; nothing written yet
   py::gil_scoped_release release;
@@ -64,7 +64,7 @@ bool fit(const std::string& scene_path, const std::string& target, const std::ve
 void bind_studies(py::module_& m) {
   m.def("_calibrate", &calibrate, py::arg("scene"), py::arg("out"), py::arg("tests"), py::arg("free"), py::arg("patch"),
         py::arg("ladders"), py::arg("starts"), py::arg("seed"), py::arg("loss"), py::arg("sliding"),
-        py::arg("border_strip"), py::arg("validate"), py::arg("resolution"), py::arg("rtol"), py::arg("progress"));
+        py::arg("border_strip"), py::arg("validate"), py::arg("time_steps"), py::arg("rtol"), py::arg("progress"));
   m.def("_fit", &fit, py::arg("scene"), py::arg("target"), py::arg("free"), py::arg("out"), py::arg("start"),
         py::arg("frames"), py::arg("model"), py::arg("integrator"), py::arg("bound_factor"), py::arg("max_iterations"),
         py::arg("fem_params"), py::arg("window"), py::arg("progress"));

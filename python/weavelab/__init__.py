@@ -11,6 +11,7 @@ runs are the run driver's (`weavelab run`), the checks the scene parser's.
 """
 import json
 import os
+import warnings
 
 from weavelab._core import (Model, Scene, SceneError, SettingError, integrator_capabilities, integrator_names,
                             model_names)
@@ -94,18 +95,20 @@ class Run:
         return "<weavelab.Run %s: %d frames to t = %g s>" % (self.outcome, len(self.times), self.end_time)
 
 
-def run(scene, model="yarn", *, integrator=None, dt=None, duration=None, output_interval=None, adaptive=False,
+def run(scene, model=None, *, integrator=None, dt=None, duration=None, output_interval=None, adaptive=False,
         rtol=None, linear_solver=None, error_estimate=False, accuracy=None, fem_params=None, out=None,
         progress=False):
     """Runs `scene` (a Scene or a path) like `weavelab run`: each keyword is the
     twin of its command-line option and obeys its rules (a duration or dt
     shorter than the scene's output interval shrinks the interval, with a
     notice). With `out` the run also writes its folder (frames, metrics.csv,
-    summary.json); without, nothing is written. Returns a Run; a numerical
-    failure is its outcome, Ctrl-C raises weavelab.Interrupted holding it."""
+    summary.json); without, nothing is written. `model` is "yarn" (woven),
+    "knit" or "fem"; None is the scene's yarn level ("yarn" or "knit"). Returns
+    a Run; a numerical failure is its outcome, Ctrl-C raises
+    weavelab.Interrupted holding it."""
     if not isinstance(scene, Scene):
         scene = load_scene(scene)
-    raw = _core._run(scene, model, None if out is None else os.fspath(out), progress, integrator, linear_solver, dt,
+    raw = _core._run(scene, model or "", None if out is None else os.fspath(out), progress, integrator, linear_solver, dt,
                      duration, output_interval, adaptive, rtol, error_estimate, accuracy,
                      None if fem_params is None else os.fspath(fem_params))
     result = Run(raw)
@@ -120,10 +123,11 @@ class Simulation(_core._Simulation):
     fixed-step method; the last one ends at the scene's duration),
     advance_to(t) to a time from t to the scene's duration (ValueError
     otherwise); q, v, t, frame() and model (for Model.evaluate at the current
-    state) read it."""
+    state) read it. `model` None is
+    the scene's yarn level ("yarn" for a woven, "knit" for a knitted cloth)."""
 
-    def __init__(self, scene, model="yarn"):
-        super().__init__(scene, model)
+    def __init__(self, scene, model=None):
+        super().__init__(scene, model or "")
 
     def _check(self, result):
         if result["outcome"] == "interrupted":
@@ -159,29 +163,36 @@ def _read_json(path):
 
 
 def calibrate(scene, out, *, tests=(), free=(), patch=0, ladders=None, starts=4, seed=1, loss="none",
-              sliding=False, border_strip=False, validate=(), resolution="controlled", rtol=1e-4, progress=False):
+              sliding=False, border_strip=False, validate=(), time_steps="controlled", rtol=1e-4, progress=False,
+              resolution=None):
     """`weavelab calibrate` (README, docs/calibration.md): fits the continuum's
     [fem] parameters to virtual tests of the scene's fabric and writes OUT
-    (params.toml, calibration.json, curves.csv, validation.csv). Returns
-    calibration.json as a dict, with "out" and "converged" added."""
+    (params.toml, calibration.json, curves.csv, validation.csv). `time_steps`
+    is `--time-steps` ("controlled" or "scene"); `resolution`, its old name,
+    still works with a DeprecationWarning. Returns calibration.json as a dict,
+    with "out" and "converged" added."""
+    if resolution is not None:
+        warnings.warn("calibrate(resolution=...) is deprecated: use time_steps=...", DeprecationWarning, stacklevel=2)
+        time_steps = resolution
     out = os.fspath(out)
     converged = _core._calibrate(_scene_file(scene, out), out, list(tests), list(free), patch, dict(ladders or {}),
                                  starts, seed, loss, sliding, border_strip, [os.fspath(p) for p in validate],
-                                 resolution, rtol, progress)
+                                 time_steps, rtol, progress)
     result = _read_json(os.path.join(out, "calibration.json"))
     result.update(out=out, converged=converged)
     return result
 
 
-def fit(scene, target, free, out, *, start=None, frames=0, model="yarn", integrator="", bound_factor=100.0,
+def fit(scene, target, free, out, *, start=None, frames=0, model=None, integrator="", bound_factor=100.0,
         max_iterations=50, fem_params="", window=(), progress=False):
     """`weavelab fit`: fits scene keys (`free`) to the frames of the run folder
     `target` (a run with out=...) and writes OUT (fit.json, convergence.csv,
-    frames.csv); `window` = (N1, N2, ...) is `--growing-window`. Returns fit.json
-    as a dict, with "out" and "converged" added."""
+    frames.csv); `window` = (N1, N2, ...) is `--growing-window`; `model` None
+    is the scene's yarn level. Returns fit.json as a dict, with "out" and
+    "converged" added."""
     out = os.fspath(out)
     converged = _core._fit(_scene_file(scene, out), os.fspath(target), list(free), out, dict(start or {}), frames,
-                           model, integrator, bound_factor, max_iterations, os.fspath(fem_params), list(window),
+                           model or "", integrator, bound_factor, max_iterations, os.fspath(fem_params), list(window),
                            progress)
     result = _read_json(os.path.join(out, "fit.json"))
     result.update(out=out, converged=converged)

@@ -213,6 +213,51 @@ TEST_F(Cli, BadKnitScenesAreLocatedExit2) {
   expect_rejected("[cloth.pattern]\nkind = \"seed\"\n", {"bad.toml:2", "cloth.pattern.kind", "garter"});
 }
 
+// The yarn level has a model per cloth (models/model_factory.h): `yarn` woven, `knit` knitted.
+// Without --model a run takes the scene's; the other one is refused, located at the scene's
+// cloth.pattern.kind (or its absence), exit 2, nothing written.
+TEST_F(Cli, YarnModelOnAKnitIsRefusedExit2) {
+  const std::string knit = WEAVELAB_SOURCE_DIR "/experiments/scenes/knit_stockinette.toml";
+  const fs::path out = dir_ / "out";
+  const Result r = run_cli("run '" + knit + "' --model yarn --quiet --out '" + out.string() + "'", dir_);
+  EXPECT_EQ(r.code, 2) << r.output;
+  for (const char* f : {"knit_stockinette.toml:12: key 'cloth.pattern.kind' = \"stockinette\"", "model 'yarn'",
+                        "expected model 'knit' or 'fem'"})
+    EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, KnitModelOnAWovenSceneIsRefusedExit2) {
+  const fs::path out = dir_ / "out";
+  const std::string woven = WEAVELAB_SOURCE_DIR "/experiments/scenes/hanging_wind.toml";
+  Result r = run_cli("run '" + woven + "' --model knit --quiet --out '" + out.string() + "'", dir_);
+  EXPECT_EQ(r.code, 2) << r.output;
+  for (const char* f :
+       {"hanging_wind.toml:15: key 'cloth.pattern.kind' = \"plain\"", "model 'knit'", "expected model 'yarn' or 'fem'"})
+    EXPECT_NE(r.output.find(f), std::string::npos) << "missing '" << f << "' in: " << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  // A scene without the key is a plain weave: the message says the key is absent.
+  const fs::path plain = write_scene(wl::test::hanging_cloth_toml(3, 0.01));
+  r = run_cli("info '" + plain.string() + "' --model knit", dir_);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("bad.toml: no key 'cloth.pattern.kind'"), std::string::npos) << r.output;
+  r = run_cli("work-precision '" + plain.string() + "' --models fem,knit --out '" + out.string() + "'", dir_);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("model 'knit'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, RunWithoutModelTakesTheScenesYarnLevel) {
+  const fs::path knit = dir_ / "knit.toml", out = dir_ / "out";
+  std::ofstream(knit) << wl::test::hanging_knit_toml(4, 3);
+  Result r = run_cli("run '" + knit.string() + "' --quiet --out '" + out.string() + "'", dir_);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(file_text(out / "summary.json").find("\"name\": \"knit\""), std::string::npos);
+  r = run_cli("info '" + knit.string() + "' --model knit", dir_);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("pattern: stockinette"), std::string::npos) << r.output;
+}
+
 TEST_F(Cli, InfoDescribesAKnit) {
   Result r = run_cli(std::string("info '") + WEAVELAB_SOURCE_DIR + "/experiments/scenes/knit_garter.toml'", dir_);
   EXPECT_EQ(r.code, 0) << r.output;
@@ -434,7 +479,9 @@ TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
       {"--starts 0", "--starts: need at least 1"},
       {"--loss weird", "--loss: got 'weird'"},
       {"--validate missing.toml", "missing.toml"},
-      {"--resolution coarse", "--resolution: got 'coarse', expected 'controlled' or 'scene'"},
+      {"--time-steps coarse", "--time-steps: got 'coarse', expected 'controlled' or 'scene'"},
+      {"--resolution coarse", "--resolution: got 'coarse', expected 'controlled' or 'scene'"},  // the old name
+      {"--time-steps scene --resolution scene", "expected only one of the two"},
       {"--rtol 2", "--rtol: got 2"},
   };
   expect_calibrate_rejected(kHangingWind, cases);
@@ -451,6 +498,18 @@ TEST_F(Cli, CalibrateRefusesWhatAKnitPatchDoesNotOffer) {
       {"--patch 5", "need at least 6"},
   };
   expect_calibrate_rejected(knit, cases);
+}
+
+// --resolution, the old name of --time-steps, still works and says so on stderr.
+TEST_F(Cli, ResolutionIsTheOldNameOfTimeSteps) {
+  const fs::path out = dir_ / "out";
+  const Result r = run_cli("calibrate '" + kHangingWind + "' --resolution fine --out '" + out.string() + "'", dir_);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("weavelab: --resolution is deprecated: use --time-steps\n"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+  const Result plain = run_cli("calibrate '" + kHangingWind + "' --time-steps fine --out '" + out.string() + "'", dir_);
+  EXPECT_EQ(plain.code, 2) << plain.output;
+  EXPECT_EQ(plain.output.find("deprecated"), std::string::npos) << plain.output;
 }
 
 TEST_F(Cli, CalibrateWritesAParameterFileThatRunReads) {

@@ -43,7 +43,7 @@ TEST_F(DiagnoseCli, BadInputIsExit2AndWritesNothing) {
   const struct {
     std::string args, says;
   } cases[] = {
-      {"--resolution fine", "--resolution: got 'fine'"},
+      {"--time-steps fine", "--time-steps: got 'fine'"},
       {"--rtol -1", "--rtol"},
       {"--duration -0.1", "--duration"},
       {"--fem-params '" + (dir_ / "absent.toml").string() + "'", "absent.toml"},

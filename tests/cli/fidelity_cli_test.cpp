@@ -48,7 +48,7 @@ TEST_F(FidelityCli, ToleranceMustBePositive) {
 }
 
 TEST_F(FidelityCli, ResolutionMustBeKnown) {
-  expect_refused("--resolution fine", {"--resolution", "'fine'", "'controlled' or 'scene'"});
+  expect_refused("--time-steps fine", {"--time-steps", "'fine'", "'controlled' or 'scene'"});
   expect_refused("--rtol 0", {"--rtol", "got 0"});
 }
 
@@ -68,7 +68,7 @@ TEST_F(FidelityCli, JobOptionsAreCheckedBeforeAnythingRuns) {
   std::ofstream(dir_ / "reference.bin") << "not a reference";
   expect_refused("--reference-from '" + dir_.path().string() + "'", {"reference.bin", "not a fidelity reference"});
   // --list-variants names the planned rungs and writes nothing
-  const Result r = fidelity("--resolution scene --list-variants");
+  const Result r = fidelity("--time-steps scene --list-variants");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("frozen_sliding\n"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("full\n"), std::string::npos) << "the reference is not a rung: " << r.output;
@@ -97,7 +97,7 @@ TEST_F(FidelityCli, WritesTheLadderAndNamesTheCheapestVariant) {
   EXPECT_EQ(variants, (std::vector<std::string>{"full", "frozen_sliding", "fem_first_guess"}));
   EXPECT_NE(r.output.find("cloth): " + cheapest + ","), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(out() / "fidelity.json"));
-  // Each row carries its own time error; the record says at which resolution the rungs ran.
+  // Each row carries its own time error; the record says at which time steps the rungs ran.
   std::stringstream json;
   json << std::ifstream(out() / "fidelity.json").rdbuf();
   for (const char* field :
@@ -131,7 +131,7 @@ TEST_F(KnitFidelityCli, RefusesTheRungsItCannotRun) {
   expect_refused("--variants fem_s1", {"fem_s1", "no calibrated parameters"});
   expect_refused(with_params() + "--variants fem_s2", {"fem_s2", "knit's contact grid", "2·wales − 1"});
   expect_refused(with_params() + "--variants fem_first_guess", {"fem_first_guess", "nothing derives"});
-  const Result r = fidelity(with_params() + "--resolution scene --list-variants");
+  const Result r = fidelity(with_params() + "--time-steps scene --list-variants");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   for (const char* rung : {"fem_s1\n", "fem_s3\n"}) EXPECT_NE(r.output.find(rung), std::string::npos) << r.output;
   for (const char* rung : {"fem_s2\n", "fem_s4\n", "fem_first_guess\n", "no_friction\n"})
@@ -140,11 +140,12 @@ TEST_F(KnitFidelityCli, RefusesTheRungsItCannotRun) {
 }
 
 TEST_F(KnitFidelityCli, MeasuresTheContinuumAtTheStitchContacts) {
-  const Result r = fidelity(with_params() + "--resolution scene --variants fem_s1,fem_s3 --tolerance 1");
+  // The reference is the knit's yarn level: its model column reads knit (yarn_level_model).
+  const Result r = fidelity(with_params() + "--time-steps scene --variants fem_s1,fem_s3 --tolerance 1");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::stringstream csv;
   csv << std::ifstream(out() / "fidelity.csv").rdbuf();
-  for (const char* row : {"\nfull,yarn,", "\nfem_s1,fem,", "\nfem_s3,fem,"})
+  for (const char* row : {"\nfull,knit,", "\nfem_s1,fem,", "\nfem_s3,fem,"})
     EXPECT_NE(csv.str().find(row), std::string::npos) << row << " in: " << csv.str();
   std::stringstream json;
   json << std::ifstream(out() / "fidelity.json").rdbuf();

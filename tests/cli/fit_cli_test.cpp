@@ -57,17 +57,17 @@ TEST_F(FitCli, RecoversTheShearModulusOfItsOwnRun) {
   EXPECT_NE(r.output.find("contact.shear_modulus_Pa = 1000"), std::string::npos) << r.output;  // the scene default
 }
 
-// At the controlled resolution both the target and the fitted runs are sdirk2
+// With --time-steps controlled both the target and the fitted runs are sdirk2
 // under error control, with other steps than each other: the fit finds the
 // shear modulus again to within what that tolerance allows.
-TEST_F(FitCli, RecoversTheShearModulusAtControlledResolution) {
+TEST_F(FitCli, RecoversTheShearModulusWithControlledTimeSteps) {
   const fs::path target = dir_ / "controlled_target";
   const auto run = cli("run " + test::shell_quote(scene_.string()) + " --integrator sdirk2 --rtol 1e-6 --quiet --out " +
                        test::shell_quote(target.string()));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const fs::path out = dir_ / "controlled_fit";
   const auto r = cli("fit " + test::shell_quote(scene_.string()) + " --target " + test::shell_quote(target.string()) +
-                     " --resolution controlled --rtol 1e-6 --free contact.shear_modulus_Pa"
+                     " --time-steps controlled --rtol 1e-6 --free contact.shear_modulus_Pa"
                      " --start contact.shear_modulus_Pa=1500 --quiet --out " +
                      test::shell_quote(out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -93,8 +93,8 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
       {"--free contact.shear_modulus_Pa --start contact.friction_coefficient=0.3", "not among the fitted keys"},
       {"--free contact.shear_modulus_Pa --integrator ida", "offers no parameter sensitivities"},
       {"--free contact.shear_modulus_Pa --model fem", "does not depend on it"},
-      {"--free contact.shear_modulus_Pa --resolution controlled --integrator be-linear", "runs sdirk2"},
-      {"--free contact.shear_modulus_Pa --resolution fine", "--resolution"},
+      {"--free contact.shear_modulus_Pa --time-steps controlled --integrator be-linear", "runs sdirk2"},
+      {"--free contact.shear_modulus_Pa --time-steps fine", "--time-steps"},
       {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=9e2,contact.friction_coefficient=0.3",
        "not among the fitted keys"},
       {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=x", "--start"},

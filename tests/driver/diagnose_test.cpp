@@ -63,7 +63,7 @@ TEST(Diagnose, TheEnergyLedgerClosesAndTheDistanceCoversEveryCrossing) {
   DiagnoseConfig c;
   c.scene_path = "test.toml";
   c.scene = parse_scene(scene_text(), "test.toml");
-  c.resolution.rtol = 1e-7;
+  c.time_steps.rtol = 1e-7;
   c.error_estimate = false;
   c.out_dir = dir;
   c.progress = false;

@@ -49,7 +49,7 @@ class Fidelity : public ::testing::Test {
     c.variants = std::move(variants);
     c.out_dir = dir_;
     c.progress = false;
-    c.resolution.scene = true;  // the model rungs at the scene's step, as written
+    c.time_steps.scene = true;  // the model rungs at the scene's step, as written
     c.error_estimate = false;
     return c;
   }
@@ -184,7 +184,7 @@ TEST_F(Fidelity, AReferenceFileOfAnotherSceneOrMissingIsRefused) {
   other.reference_from = dir_ / "reference";
   refused(other, "written for another scene");
   FidelityConfig same = config(sliding_in_wind(), {"frozen_sliding"});
-  same.resolution.scene = false;  // another resolution: other reference frames
+  same.time_steps.scene = false;  // another resolution: other reference frames
   same.reference_from = dir_ / "reference";
   refused(same, "written for another scene");
   same.reference_from = dir_ / "nowhere";
@@ -281,7 +281,7 @@ TEST_F(Fidelity, PlanRefusesBadInput) {
 
 TEST_F(Fidelity, TimeRungsMeasureTheirStepAgainstAControlledReference) {
   FidelityConfig c = config(sliding_in_wind(), {"scene_step", "half_step", "quarter_step"});
-  c.resolution = {false, 1e-7};  // the reference: sdirk2 at rtol 1e-7
+  c.time_steps = {false, 1e-7};  // the reference: sdirk2 at rtol 1e-7
   c.error_estimate = true;
   const FidelityResult r = run_fidelity(c, plan_fidelity(c));
   const FidelityRow& ref = row(r, "full");

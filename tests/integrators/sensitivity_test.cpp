@@ -174,9 +174,9 @@ TEST(ForwardSensitivity, KnitDensityAndRollStiffnessAreExact) {
   Scene s = parse_scene(test::hanging_knit_toml(4, 3), "knit.toml");
   s.sliding = true;
   const std::vector<std::string> keys = {yarn_type_key("default", kDensityField), "knit.roll_stiffness_N"};
-  EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", keys, 1e-3, 1e-5, {1e-6, 1e-6}), 1e-6);
+  EXPECT_LT(sensitivity_error(s, "knit", "be-newton", keys, 1e-3, 1e-5, {1e-6, 1e-6}), 1e-6);
   s.sliding = false;
-  EXPECT_LT(sensitivity_error(s, "yarn", "be-newton", keys, 1e-3, 1e-5, {1e-6, 1e-6}), 1e-6);
+  EXPECT_LT(sensitivity_error(s, "knit", "be-newton", keys, 1e-3, 1e-5, {1e-6, 1e-6}), 1e-6);
 }
 
 // be-linear holds K₀ and D₀ when differentiating its step: an O(h) error that

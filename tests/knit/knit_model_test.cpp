@@ -110,7 +110,7 @@ TEST(KnitModel, AssembledJacobianMatchesFiniteDifferences) {
   Scene s = knit_scene("rib2x2", 3, 4);
   s.gravity_m_per_s2 = {0.0, 0.0, -9.81};
   std::vector<std::unique_ptr<Model>> models;
-  models.push_back(make_model(s, "yarn"));
+  models.push_back(make_model(s, "knit"));
   models.push_back(KnitModel::tile(s));
   for (auto& model : models) {
     const int n = model->num_dofs();

@@ -108,7 +108,7 @@ output_interval_s = 0.01
 
 class LadderAsJobs(unittest.TestCase):
     def test_jobs_and_merge_give_the_distances_of_one_run(self):
-        options = ["--resolution", "scene", "--no-error-estimate", "--quiet"]
+        options = ["--time-steps", "scene", "--no-error-estimate", "--quiet"]
         rungs = ["frozen_sliding", "fem_first_guess"]
         with tempfile.TemporaryDirectory() as tmp:
             scene = os.path.join(tmp, "scene.toml")

@@ -8,7 +8,7 @@ import unittest
 import numpy as np
 
 import weavelab
-from support import small_scene
+from support import SOURCE_DIR, small_scene
 
 
 def moved_state(model, seed=3):
@@ -55,6 +55,20 @@ class ModelAtAState(unittest.TestCase):
         self.assertAlmostEqual(energies["kinetic_J"], 0.5 * v @ (e["mass"] @ v), delta=1e-12 * energies["kinetic_J"])
         self.assertGreater(energies["kinetic_J"], 0.0)
         self.assertNotEqual(energies["potential_J"], model.energies(model.initial_q, v)["potential_J"])
+
+    def test_the_yarn_level_follows_the_cloth(self):
+        self.assertEqual(weavelab.model_names(), ["yarn", "knit", "fem"])
+        knit = weavelab.load_scene(os.path.join(SOURCE_DIR, "experiments", "scenes", "knit_stockinette.toml"))
+        self.assertEqual(weavelab.Model(knit).name, "knit")  # no kind: the scene's yarn level
+        self.assertEqual(weavelab.Model(knit, "knit").name, "knit")
+        self.assertEqual(weavelab.Model(small_scene(weavelab, size=5)).name, "yarn")
+        with self.assertRaises(ValueError) as e:
+            weavelab.Model(knit, "yarn")
+        self.assertIn("cloth.pattern.kind", str(e.exception))
+        self.assertIn("expected model 'knit' or 'fem'", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            weavelab.Model(small_scene(weavelab, size=5), "knit")
+        self.assertIn("expected model 'yarn' or 'fem'", str(e.exception))
 
     def test_bad_state_size(self):
         model = weavelab.Model(small_scene(weavelab, size=5), "yarn")

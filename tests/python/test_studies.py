@@ -42,6 +42,17 @@ class Studies(unittest.TestCase):
             self.assertIn("no_such_test", str(e.exception))
             self.assertFalse(os.path.exists(os.path.join(tmp, "cal", "calibration.json")))
 
+    def test_time_steps_and_its_old_keyword(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            with self.assertRaises(ValueError) as e:
+                weavelab.calibrate(HANGING_WIND, os.path.join(tmp, "cal"), time_steps="fine")
+            self.assertIn("time_steps: got 'fine'", str(e.exception))
+            # resolution=, the old name, still works and warns
+            with self.assertWarns(DeprecationWarning), self.assertRaises(ValueError) as e:
+                weavelab.calibrate(HANGING_WIND, os.path.join(tmp, "cal"), resolution="fine")
+            self.assertIn("got 'fine'", str(e.exception))
+            self.assertFalse(os.path.exists(os.path.join(tmp, "cal")))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -1,4 +1,4 @@
-#include "driver/resolution.h"
+#include "driver/time_steps.h"
 
 #include <cmath>
 #include <cstdio>
@@ -6,14 +6,14 @@
 
 namespace wl {
 
-std::string Resolution::describe() const {
+std::string TimeSteps::describe() const {
   if (scene) return "each scene's own integrator and step";
   char b[96];
   std::snprintf(b, sizeof b, "sdirk2 under error control, rtol %g, atol %g m", rtol, 1e-3 * rtol);
   return b;
 }
 
-Resolution parse_resolution(const std::string& option, const std::string& value, double rtol) {
+TimeSteps parse_time_steps(const std::string& option, const std::string& value, double rtol) {
   if (value != "scene" && value != "controlled")
     throw std::invalid_argument(option + ": got '" + value + "', expected 'controlled' or 'scene'");
   if (!(rtol > 0.0) || !(rtol < 1.0) || !(1e-3 * rtol > 0.0)) {  // atol = 1e-3·rtol (at_resolution)
@@ -25,7 +25,7 @@ Resolution parse_resolution(const std::string& option, const std::string& value,
   return {value == "scene", rtol};
 }
 
-Scene at_resolution(const Scene& scene, const Resolution& r) {
+Scene at_time_steps(const Scene& scene, const TimeSteps& r) {
   Scene s = scene;
   if (r.scene) return s;
   s.integrator = "sdirk2";
