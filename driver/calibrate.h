@@ -8,7 +8,7 @@
 //   curves.csv         yarn, fitted and first-guess response per test and load
 //   validation.csv     per validation scene, variant and frame: RMS and max
 //                      distance between the yarn crossings and the continuum
-// (experiments/plot_calibration.py draws the charts from these).
+// (experiments/calibration/scripts/plot_calibration.py draws the charts from these).
 #pragma once
 #include <filesystem>
 #include <map>

@@ -20,7 +20,7 @@
 //                   "distance_to_continuum_m", for ParaView
 //   diagnosis.json  scene, resolution, both time errors, the mean distance,
 //                   its verdict, and the crossings farthest apart
-// (experiments/plot_diagnosis.py draws the charts from these).
+// (experiments/diagnosis/scripts/plot_diagnosis.py draws the charts from these).
 #pragma once
 #include <filesystem>
 #include <map>

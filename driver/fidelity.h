@@ -8,7 +8,7 @@
 //   fidelity.json  scene, reference, tolerance, the rows, the variants left
 //                  out and why, the cheapest variant within the tolerance (and
 //                  within 1 % and 5 % of the cloth size) with its speed-up
-// (experiments/plot_fidelity.py draws the Pareto chart from these).
+// (experiments/fidelity/scripts/plot_fidelity.py draws the Pareto chart from these).
 #pragma once
 #include <cmath>
 #include <filesystem>

@@ -8,7 +8,7 @@
 //   frames.csv      per fitted frame: RMS distance to the target at the start and
 //                   at the fit, and the target, start and fitted position of the
 //                   point that moves most
-// (experiments/plot_fit.py draws the chart from these).
+// (experiments/common/plot_fit.py draws the chart from these).
 #pragma once
 #include <filesystem>
 #include <map>

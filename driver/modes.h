@@ -24,7 +24,7 @@
 //                    components "mode_NN_slide" (u, v), for ParaView
 //   modes.json       scene, parameters, both equilibria (Newton iterations,
 //                    residual), K's asymmetry, DoFs, frequencies and pairs
-// (experiments/plot_modes.py draws the MAC matrix and the frequencies).
+// (experiments/diagnosis/scripts/plot_modes.py draws the MAC matrix and the frequencies).
 #pragma once
 #include <cmath>
 #include <filesystem>

@@ -39,7 +39,7 @@ TimeErrorEstimate estimate_time_error(const Scene& scene, const std::string& mod
                                       const RecordedRun& run, bool progress = false);
 
 // What a mean distance between two runs measures, given each run's estimate
-// (the rule experiments/compare.py prints): "resolved" when both time errors
+// (the rule experiments/common/compare.py prints): "resolved" when both time errors
 // are below a tenth of it, "time error above a tenth of the distance",
 // "time error exceeds the distance", or "time error unknown".
 std::string error_budget_verdict(double distance_m, const TimeErrorEstimate& a, const TimeErrorEstimate& b);

@@ -16,7 +16,7 @@ std::string TimeSteps::describe() const {
 TimeSteps parse_time_steps(const std::string& option, const std::string& value, double rtol) {
   if (value != "scene" && value != "controlled")
     throw std::invalid_argument(option + ": got '" + value + "', expected 'controlled' or 'scene'");
-  if (!(rtol > 0.0) || !(rtol < 1.0) || !(1e-3 * rtol > 0.0)) {  // atol = 1e-3·rtol (at_resolution)
+  if (!(rtol > 0.0) || !(rtol < 1.0) || !(1e-3 * rtol > 0.0)) {  // atol = 1e-3·rtol (at_time_steps)
     char got[32];
     std::snprintf(got, sizeof got, "%g", rtol);
     throw std::invalid_argument("--rtol: got " + std::string(got) +
