@@ -6,9 +6,9 @@
 #include <map>
 #include <string>
 
-#include "output/json_writer.h"
 #include "integrators/integrator.h"
 #include "models/scene/scene.h"
+#include "output/json_writer.h"
 
 namespace wl {
 
