@@ -12,12 +12,12 @@
 #include "driver/interrupt.h"
 #include "driver/run_settings.h"
 #include "driver/run_summary.h"
+#include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/metrics_csv.h"
 #include "output/pvd_series.h"
 #include "output/run_folder.h"
 #include "output/self_intersection.h"
-#include "models/model_factory.h"
 
 namespace wl {
 namespace {
@@ -84,6 +84,14 @@ SettledBalance settled_balance(const Scene& scene, Model& model, double t, const
   return b;
 }
 
+void print_measures(const RunReport& rep) {
+  if (!rep.drape) return;
+  if (*rep.drape)
+    std::fprintf(stderr, "weavelab: drape at t = %g s: coefficient %.4g, %d folds\n", (*rep.drape)->time_s,
+                 (*rep.drape)->coefficient, (*rep.drape)->folds);
+  else std::fprintf(stderr, "weavelab: drape not measured: the last frame's shadow is too large to rasterize\n");
+}
+
 }  // namespace
 
 RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
@@ -147,12 +155,14 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
         Eigen::Map<const Eigen::VectorXd>(f.points.data(), rows);
     record.trajectory.times.push_back(f.time);
   };
+  Frame last_frame;  // what the scene's [measures] are taken on
   auto add_frame = [&](Frame f) {
     keep_frame(f);
     if (series) series->add(f);
     if (options.on_frame) options.on_frame(f);
     if (obstacle_series) obstacle_series->add(model->obstacle_frame(f.time));
     if (intersections) intersections->row({f.time, double(count_self_intersections(f))});
+    last_frame = std::move(f);
   };
   integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
   Evaluation scratch;
@@ -214,6 +224,8 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options) {
   rep.end_time = integrator->t();
   if (scene.settle_dt_s > 0.0 && rep.result.outcome == Outcome::ok)
     rep.settled = settled_balance(scene, *model, integrator->t(), integrator->q(), integrator->v());
+  if (scene.measures.drape) rep.drape = measure_drape(last_frame, drape_geometry(scene));
+  if (options.progress) print_measures(rep);
   rep.accuracy = std::move(accuracy);
   if (rep.accuracy) rep.time_error = rep.accuracy->estimate;
   if (scene.error_estimate && rep.result.outcome == Outcome::ok) {
