@@ -137,12 +137,20 @@ def machine():
     return f"{os.cpu_count()} cores ({cpu}), {memory_gb:.0f} GiB, load average {load} (1, 5, 15 min) when written"
 
 
+# The command line the user typed. Snakemake runs a `run:` block in a process
+# of its own whose arguments are internal; this module is first imported while
+# the user's snakemake reads the Snakefile, so the command is kept in the
+# environment then, which the job processes inherit.
+COMMAND_VARIABLE = "WEAVELAB_WORKFLOW_COMMAND"
+os.environ.setdefault(COMMAND_VARIABLE, " ".join([os.path.basename(sys.argv[0]), *sys.argv[1:]]) if sys.argv else "")
+
+
 def provenance():
     return {
         "revision": git("describe", "--always", "--dirty", "--abbrev=12"),
         "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
         "machine": machine(),
-        "command": " ".join(["snakemake", *sys.argv[1:]]) if "snakemake" in sys.argv[0] else " ".join(sys.argv),
+        "command": os.environ[COMMAND_VARIABLE],
     }
 
 
@@ -232,7 +240,8 @@ def write_pending(path, study, title, command, reason, earlier_figures=()):
         with open(about, encoding="utf-8") as f:
             out += [f.read().strip(), ""]
     for figure in earlier_figures:
-        revision = git("log", "-1", "--format=%h", "--", figure) or "unknown"
+        # the last commit that changed the picture, not one that only moved it
+        revision = git("log", "-1", "--follow", "--diff-filter=AM", "--format=%h", "--", figure) or "unknown"
         out.append(f"![{os.path.basename(figure)}]({os.path.relpath(figure, folder)})\n")
         out.append(f"Figure from revision `{revision}`, before this study became a workflow.\n")
     text = MARKER + json.dumps(index, ensure_ascii=False) + " -->\n" + "\n".join(out)
