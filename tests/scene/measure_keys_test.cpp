@@ -8,11 +8,9 @@ namespace wl {
 namespace {
 
 const std::string kCloth = "[cloth]\nwarps = 9\nwefts = 9\nspacing_m = 0.001\nradius_m = 0.0005\n";  // lines 1–5
-const std::
-    string
-        kPedestal =
-            "[[obstacles]]\nshape = \"disk\"\ncenter_m = [0.004, 0.004, -0.001]\nradius_m = 0.002\nthickness_m = "
-            "0.002\n";  // 6–10
+const std::string kPedestal =
+    "[[obstacles]]\nshape = \"disk\"\ncenter_m = [0.004, 0.004, -0.001]\nradius_m = 0.002\nthickness_m = "
+    "0.002\n";  // 6–10
 
 SceneError expect_error(const std::string& text, int line, const std::string& key, const std::string& expected_part) {
   try {
