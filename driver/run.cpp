@@ -191,6 +191,14 @@ void estimate_run_time_error(const Scene& scene, const RunOptions& options, cons
   }
 }
 
+void print_measures(const RunReport& rep) {
+  if (!rep.drape) return;
+  if (*rep.drape)
+    std::fprintf(stderr, "weavelab: drape at t = %g s: coefficient %.4g, %d folds\n", (*rep.drape)->time_s,
+                 (*rep.drape)->coefficient, (*rep.drape)->folds);
+  else std::fprintf(stderr, "weavelab: drape not measured: the last frame's shadow is too large to rasterize\n");
+}
+
 }  // namespace
 
 RunReport run_scene(const Scene& scene_in, const RunOptions& options_in) {
@@ -219,12 +227,14 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options_in) {
         Eigen::Map<const Eigen::VectorXd>(f.points.data(), rows);
     record.trajectory.times.push_back(f.time);
   };
+  Frame last_frame;  // what the scene's [measures] are taken on
   auto add_frame = [&](Frame f) {
     keep_frame(f);
     if (files.series) files.series->add(f);
     if (options.on_frame) options.on_frame(f);
     if (files.obstacle_series) files.obstacle_series->add(model->obstacle_frame(f.time));
     if (files.intersections) files.intersections->row({f.time, double(count_self_intersections(f))});
+    last_frame = std::move(f);
   };
   integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
   Evaluation scratch;
@@ -254,6 +264,8 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options_in) {
   rep.end_time = integrator->t();
   if (scene.settle_dt_s > 0.0 && rep.result.outcome == Outcome::ok)
     rep.settled = settled_balance(scene, *model, integrator->t(), integrator->q(), integrator->v());
+  if (scene.measures.drape) rep.drape = measure_drape(last_frame, drape_geometry(scene));
+  if (options.progress) print_measures(rep);
   rep.accuracy = std::move(accuracy);
   if (rep.accuracy) rep.time_error = rep.accuracy->estimate;
   estimate_run_time_error(scene, options, iopt, record, rep);

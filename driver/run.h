@@ -10,6 +10,7 @@
 #include <string>
 
 #include "driver/accuracy.h"
+#include "driver/drape_measure.h"
 #include "driver/time_error.h"
 #include "integrators/integrator.h"
 #include "models/scene/scene.h"
@@ -43,7 +44,9 @@ struct RunReport {
   // Scene key time.accuracy_m (--accuracy): the choice made before the run.
   std::optional<AccuracyChoice> accuracy;
   std::optional<SettledBalance> settled;  // time.settle_dt_s set and the run ended ok
-  std::string summary_json;               // the text of summary.json
+  // Scene key measures.drape: the last frame's drape (nullopt inside: its shadow was too large to rasterize).
+  std::optional<std::optional<DrapeMeasure>> drape;
+  std::string summary_json;  // the text of summary.json
 };
 
 // The frames, metrics.csv and summary.json go to options.out_dir (README,

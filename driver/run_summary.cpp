@@ -4,6 +4,33 @@
 #include "driver/memory_estimate.h"
 
 namespace wl {
+namespace {
+
+// The scene's [measures] taken on the run's last frame (docs/models.md §3.11.6).
+Json measures_json(const Scene& scene, const RunReport& report) {
+  Json measures = Json::object();
+  if (report.drape) {
+    const DrapeGeometry g = drape_geometry(scene);
+    Json d = Json::object();
+    if (*report.drape) {
+      d.set("time_s", (*report.drape)->time_s);
+      d.set("coefficient", (*report.drape)->coefficient);
+      d.set("folds", (*report.drape)->folds);
+      d.set("projected_area_m2", (*report.drape)->projected_area_m2);
+    } else {
+      d.set("error", "the last frame's shadow spans more than " + std::to_string(long(kMaxShadowPixels)) +
+                         " pixels (the run blew up?): not measured");
+    }
+    d.set("cloth_area_m2", g.cloth_area_m2);
+    d.set("pedestal_radius_m", g.pedestal_radius_m);
+    d.set("pixel_m", g.pixel_m);
+    d.set("fold_prominence_m", g.fold_prominence_m);
+    measures.set("drape", d);
+  }
+  return measures;
+}
+
+}  // namespace
 
 std::string run_summary_json(const Scene& scene, const RunOptions& options, const Model& model,
                              const Integrator& integrator, const RunReport& report) {
@@ -47,6 +74,7 @@ std::string run_summary_json(const Scene& scene, const RunOptions& options, cons
     b.set("kinetic_J", report.settled->kinetic_J);
     j.set("settle", b);
   }
+  if (report.drape) j.set("measures", measures_json(scene, report));
   add_provenance(j);
   j.set("finished_utc", utc_now());
   return j.dump();

@@ -82,6 +82,12 @@
 //   [obstacle_contact]  activation_distance_m, stiffness_N_per_m, friction_speed_m_per_s > 0, segment_edges,
 //     step_hessian = "projected" | "exact"
 //   [self_contact]  enabled (bool), activation_distance_m, stiffness_N_per_m > 0
+//   [measures]      what the run measures on its last frame, into summary.json "measures"
+//     (measure_reader.cpp, docs/models.md §3.11.6):
+//     drape (bool): drape coefficient and fold count over the pedestal, the first disk, cylinder
+//       or sphere obstacle, not turned about x or y; woven cloth only
+//     drape_pixel_m (cloth side / 8192 ≤ x ≤ cloth.spacing_m, default 1e-4),
+//     fold_prominence_m (> 0, default 5e-4): only with drape = true
 //
 // ERRORS: SceneError with file, line (source line of the offending value; for a
 // missing key or a violated default, the line of its table), the dotted key
@@ -97,6 +103,7 @@
 #include <set>
 #include <sstream>
 
+#include "models/scene/measure_reader.h"
 #include "models/scene/obstacle_reader.h"
 #include "models/scene/scene_limits.h"
 #include "models/scene/toml_reader.h"
@@ -565,7 +572,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   TableReader top(src, root, "");
   // Unknown tables first: a misspelt table name is the likeliest error.
   top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "damping", "time",
-               "terms", "fem", "obstacles", "obstacle_contact", "self_contact", "knit"});
+               "terms", "fem", "obstacles", "obstacle_contact", "self_contact", "knit", "measures"});
   top.finish();
   const auto yarn_defs = read_yarn_types(top);
   read_cloth(top, s, yarn_defs);
@@ -578,6 +585,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   read_time(top, s);
   read_terms(top, s);
   scene_detail::read_obstacles(top, s);
+  scene_detail::read_measures(top, s);
   return s;
 }
 

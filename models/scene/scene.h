@@ -145,6 +145,17 @@ struct SelfContactParams {
   int line = 0;                                 // the [self_contact] table in the scene file
 };
 
+// What a run measures on its last output frame and writes into summary.json's
+// "measures" (docs/models.md §3.11.6); nothing unless asked for.
+struct MeasureSettings {
+  // The drape coefficient and fold count of the cloth over its pedestal (the
+  // first disk, cylinder or sphere obstacle), driver/drape_measure.h.
+  bool drape = false;
+  double drape_pixel_m = 1e-4;      // side of the raster's square pixels
+  double fold_prominence_m = 5e-4;  // a fold's outer radius stands this far above the minima beside it
+  int line = 0;                     // the [measures] table in the scene file
+};
+
 struct TermSwitches {
   bool stretch = true, bending = true, shear = true, parallel_contact = true, friction = true;
   bool gravity = true, wind = true, handles = true, inertia = true;
@@ -219,6 +230,7 @@ struct Scene {
   std::vector<ObstacleSpec> obstacles;
   ObstacleContactParams obstacle_contact;
   SelfContactParams self_contact;
+  MeasureSettings measures;
 
   int nodes_u() const { return wefts; }  // nodes along a warp = number of wefts
   int nodes_v() const { return warps; }

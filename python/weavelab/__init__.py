@@ -82,6 +82,12 @@ class Run:
         self.point_data = raw  # the other point data: "u", "v" (sliding coordinates [m]), "F_n", "sliding", …
 
     @property
+    def measures(self):
+        """What the scene's [measures] asked for, taken on the last frame (summary.json
+        "measures", docs/models.md §3.11.6), e.g. measures["drape"]["coefficient"]; {} when none."""
+        return self.summary.get("measures", {})
+
+    @property
     def u(self):
         """Sliding coordinate along the warp per frame and node [m] (yarn model)."""
         return self.point_data.get("u")
