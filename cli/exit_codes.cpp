@@ -36,6 +36,8 @@ int numerical_failure_is_exit_1(const std::string& name, const std::function<int
     return computation();
   } catch (const std::filesystem::filesystem_error&) {
     throw;
+  } catch (const SceneError&) {  // a scene the computation cannot take (e.g. a knit without [fem] stiffnesses)
+    throw;
   } catch (const std::runtime_error& e) {
     std::cerr << "weavelab: " << name << ": " << e.what() << "\n";
     return 1;

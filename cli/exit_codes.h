@@ -18,7 +18,8 @@ int exit_code_of(const std::function<int()>& command);
 
 // The computation of a study, once its inputs are checked: a std::runtime_error
 // from it is a numerical failure, "weavelab: NAME: message" and exit 1; a
-// std::filesystem::filesystem_error stays an output error (exit 3, exit_code_of).
+// std::filesystem::filesystem_error stays an output error (exit 3, exit_code_of)
+// and a SceneError bad input (exit 2).
 int numerical_failure_is_exit_1(const std::string& name, const std::function<int()>& computation);
 
 }  // namespace wl::cli

@@ -1,0 +1,66 @@
+// Input every subcommand checks before any work, as `run` does: a knit
+// without [fem] stiffnesses, an --out naming a file, adaptive steps asked of
+// an integrator without error control, a cloth too large for memory, a node
+// starting inside an obstacle. Each is exit 2 with a message naming it and
+// nothing written; and the messages of refusals and fallbacks say what is so.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests/output/output_test_util.h"
+#include "tests/support/test_scenes.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Result = wl::test::CommandResult;
+using wl::test::shell_quote;
+
+class UpFrontChecks : public ::testing::Test {
+ protected:
+  void SetUp() override { std::ofstream(tiny()) << wl::test::hanging_cloth_toml(5, 0.02, "be-newton"); }
+  fs::path tiny() const { return dir_ / "tiny.toml"; }
+  fs::path out() const { return dir_ / "out"; }
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  static Result cli(const std::string& args) { return wl::test::run_command(std::string(WEAVELAB_CLI) + " " + args); }
+  // `subcommand` on `scene` with --quiet and --out `out`, then `options`.
+  static Result command(const std::string& subcommand, const fs::path& scene, const fs::path& out,
+                        const std::string& options = "") {
+    return cli(subcommand + " " + shell_quote(scene.string()) + " --quiet --out " + shell_quote(out.string()) + " " +
+               options);
+  }
+  static bool has(const Result& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
+  wl::test::ScratchDir dir_;
+};
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A knit's continuum takes its stiffnesses from a calibration (docs/models.md
+// §11.9): without them, diagnose and modes refuse it as `run --model fem` does.
+TEST_F(UpFrontChecks, AKnitWithoutFemStiffnessesIsExit2ForEveryComparison) {
+  const fs::path knit = write("knit.toml", wl::test::hanging_knit_toml(4, 3));
+  const Result run = command("run", knit, out(), "--model fem");
+  ASSERT_EQ(run.exit_code, 2) << run.output;
+  ASSERT_TRUE(has(run, "a calibrated value > 0")) << run.output;
+  EXPECT_FALSE(fs::exists(out()));
+  for (const char* subcommand : {"diagnose", "modes"}) {
+    const Result r = command(subcommand, knit, out());
+    EXPECT_EQ(r.exit_code, 2) << subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r, "knit.toml:")) << subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r, "a calibrated value > 0")) << subcommand << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out())) << subcommand;
+  }
+}
+
+}  // namespace
