@@ -9,6 +9,7 @@
 #include "cli/exit_codes.h"
 #include "cli/options.h"
 #include "driver/calibrate.h"
+#include "driver/run_settings.h"
 
 namespace wl::cli {
 namespace {
@@ -98,8 +99,8 @@ CalibrateConfig config_of(const CLI::App* calibrate, const CalibrateArgs& a) {
     throw std::invalid_argument("--patch: got " + std::to_string(cal.patch) + ", expected a number of crossings");
   for (const auto& v : a.validate) cal.validate.emplace_back(v);
   cal.time_steps = time_steps_of(a.time_steps);
-  cal.out_dir = a.out.empty() ? std::filesystem::path("results/calibration") / std::filesystem::path(a.scene).stem()
-                              : std::filesystem::path(a.out);
+  cal.out_dir = output_folder(calibrate->count("--out") ? std::optional(a.out) : std::nullopt,
+                              std::filesystem::path("results/calibration") / std::filesystem::path(a.scene).stem());
   cal.progress = !a.quiet;
   return cal;
 }

@@ -217,9 +217,15 @@ double positive_option(const std::string& option, double value) {
 }
 
 std::filesystem::path output_folder(const std::optional<std::string>& given, const std::filesystem::path& fallback) {
-  if (!given) return fallback;
-  if (given->empty()) throw SettingError("--out", "''", "a non-empty folder path");
-  return *given;
+  if (given && given->empty()) throw SettingError("--out", "''", "a non-empty folder path");
+  const std::filesystem::path folder = given ? std::filesystem::path(*given) : fallback;
+  std::error_code ec;
+  if (std::filesystem::exists(folder, ec) && !std::filesystem::is_directory(folder, ec)) {
+    const std::string expected = "a folder, or a path where none exists yet (it names an existing file)";
+    if (given) throw SettingError("--out", "'" + folder.string() + "'", expected);
+    throw std::invalid_argument("output folder '" + folder.string() + "': expected " + expected + "; choose --out");
+  }
+  return folder;
 }
 
 }  // namespace wl

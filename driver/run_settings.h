@@ -67,7 +67,9 @@ void apply_duration_override(Scene& scene, double duration_s, std::map<std::stri
 // A finite number > 0 for a plain option (e.g. --budget); SettingError otherwise.
 double positive_option(const std::string& option, double value);
 
-// The --out folder: `given` when set (an empty path is a SettingError), else `fallback`.
+// The --out folder: `given` when set (an empty path is a SettingError), else
+// `fallback`; checked before any work: a path naming an existing file that is
+// not a folder is std::invalid_argument (exit 2; a SettingError for --out).
 std::filesystem::path output_folder(const std::optional<std::string>& given, const std::filesystem::path& fallback);
 
 }  // namespace wl

@@ -63,4 +63,37 @@ TEST_F(UpFrontChecks, AKnitWithoutFemStiffnessesIsExit2ForEveryComparison) {
   }
 }
 
+// An --out that names an existing file is refused before any work by every
+// subcommand that writes a folder, and the file is left as it was.
+TEST_F(UpFrontChecks, AnOutNamingAFileIsExit2BeforeAnyWork) {
+  const fs::path target = dir_ / "target";
+  const Result made = command("run", tiny(), target);
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const fs::path taken = write("taken", "not a folder\n");
+  const std::string target_option = "--target " + shell_quote(target.string());
+  const struct {
+    std::string subcommand, options;
+  } cases[] = {
+      {"run", ""},
+      {"diagnose", ""},
+      {"modes", ""},
+      {"fidelity", ""},
+      {"calibrate", "--tests shear"},
+      {"fit", target_option + " --free contact.shear_modulus_Pa"},
+      {"pull", ""},
+      {"work-precision", ""},
+      {"stability", ""},
+  };
+  for (const auto& c : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = command(c.subcommand, tiny(), taken, c.options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exit_code, 2) << c.subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r, "'--out'") && has(r, taken.string()) && has(r, "existing file")) << c.subcommand << "\n"
+                                                                                        << r.output;
+    EXPECT_LT(seconds, 5.0) << c.subcommand << ": refused only after the work";
+    EXPECT_EQ(text_of(taken), "not a folder\n") << c.subcommand;
+  }
+}
+
 }  // namespace
