@@ -61,6 +61,21 @@ const Overridable* overridden(const std::string& key, const std::map<std::string
                    expected);
 }
 
+// --adaptive or --rtol asks for error control, which the integrator must declare
+// (IntegratorCapabilities::controls_error); one without it would run fixed steps.
+void check_error_control(const Scene& scene, const std::map<std::string, std::string>& record) {
+  if (!scene.adaptive || !record.count("adaptive") || make_integrator(scene.integrator)->capabilities().controls_error)
+    return;
+  std::string controlled;
+  for (const auto& n : integrator_names())
+    if (make_integrator(n)->capabilities().controls_error) controlled += (controlled.empty() ? "" : ", ") + n;
+  const bool rtol = record.count("rtol") > 0;
+  throw SettingError(rtol ? "--rtol" : "--adaptive", rtol ? record.at("rtol") : "true",
+                     "an integrator with error control: " + scene.integrator +
+                         " has none (it would run fixed steps of dt); choose one of " + controlled +
+                         ", or drop the option");
+}
+
 }  // namespace
 
 SettingError::SettingError(const std::string& option, const std::string& value, const std::string& expected)
@@ -77,6 +92,7 @@ void check_run_settings(const Scene& scene, const std::map<std::string, std::str
     for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
     fail(scene, record, "time.integrator", "\"" + scene.integrator + "\"", "one of " + known);
   }
+  check_error_control(scene, record);
   // The settling phase changes the step of a run under way (docs/models.md §3.11.6).
   if (scene.settle_dt_s > 0.0 && !make_integrator(scene.integrator)->capabilities().replays_steps)
     fail(scene, record, "time.settle_dt_s", shortest(scene.settle_dt_s),

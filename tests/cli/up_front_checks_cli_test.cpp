@@ -96,4 +96,20 @@ TEST_F(UpFrontChecks, AnOutNamingAFileIsExit2BeforeAnyWork) {
   }
 }
 
+// be-linear has no error control (IntegratorCapabilities::controls_error):
+// --rtol or --adaptive would run its fixed steps while the record said adaptive.
+TEST_F(UpFrontChecks, AdaptiveStepsOfAnIntegratorWithoutErrorControlAreExit2) {
+  for (const std::string& options : {"--integrator be-linear --rtol 1e-3", "--integrator be-linear --adaptive"}) {
+    const Result r = command("run", tiny(), out(), options);
+    EXPECT_EQ(r.exit_code, 2) << options << "\n" << r.output;
+    EXPECT_TRUE(has(r, options.find("rtol") != std::string::npos ? "'--rtol'" : "'--adaptive'")) << options << "\n"
+                                                                                                 << r.output;
+    EXPECT_TRUE(has(r, "be-linear has none")) << options << "\n" << r.output;
+    EXPECT_TRUE(has(r, "sdirk2")) << options << "\n" << r.output;  // one that has it
+    EXPECT_FALSE(fs::exists(out())) << options;
+  }
+  const Result controlled = command("run", tiny(), out(), "--integrator sdirk2 --rtol 1e-3");
+  EXPECT_EQ(controlled.exit_code, 0) << controlled.output;
+}
+
 }  // namespace
