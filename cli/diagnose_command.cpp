@@ -34,6 +34,7 @@ int run(const CLI::App* diagnose, const DiagnoseArgs& a) {
   DiagnoseConfig diag;
   diag.scene_path = a.scene;
   diag.scene = load_scene(a.scene);
+  check_comparison_memory(diag.scene);  // before any allocation: exit 2
   if (diagnose->count("--duration")) apply_duration_override(diag.scene, a.duration, diag.overrides);
   check_run_settings(diag.scene, diag.overrides);
   if (!a.fem_params.empty()) diag.fem_params = a.fem_params;

@@ -57,6 +57,7 @@ FidelityConfig config_of(const CLI::App* fidelity, const FidelityArgs& a) {
   FidelityConfig fid = a.config;
   fid.scene_path = a.scene;
   fid.scene = load_scene(a.scene);
+  check_comparison_memory(fid.scene);  // before any allocation: exit 2
   if (fidelity->count("--duration")) apply_duration_override(fid.scene, a.duration, fid.overrides);
   check_run_settings(fid.scene, fid.overrides);
   if (fidelity->count("--tolerance")) fid.tolerance_m = positive_option("--tolerance", a.tolerance);

@@ -41,6 +41,7 @@ int run(const CLI::App* modes, const ModesArgs& a) {
   ModesConfig modc = a.config;
   modc.scene_path = a.scene;
   modc.scene = load_scene(a.scene);
+  check_comparison_memory(modc.scene);  // before any allocation: exit 2
   if (!a.fem_params.empty()) modc.fem_params = a.fem_params;
   modc.out_dir = output_folder(modes->count("--out") ? std::optional(a.out) : std::nullopt,
                                std::filesystem::path("results/modes") / std::filesystem::path(a.scene).stem());

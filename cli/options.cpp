@@ -3,6 +3,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "driver/run_settings.h"
 #include "integrators/integrator.h"
 #include "models/model_factory.h"
 
@@ -11,6 +12,11 @@ namespace wl::cli {
 const std::string kTimeStepsHelp =
     "Time steps of the comparison: controlled (sdirk2 under error control at --rtol) or scene (each "
     "scene's own integrator and fixed step)";
+
+void check_comparison_memory(const Scene& scene) {
+  check_run_memory(scene, yarn_level_model(scene));
+  check_run_memory(scene, "fem");
+}
 
 std::string joined(const std::vector<std::string>& names) {
   std::string s;

@@ -30,6 +30,11 @@ std::string model_help(const std::string& lead);
 // cloth is not, naming the scene file and key.
 std::string model_for_scene(const Scene& scene, const std::string& given);
 
+// The comparisons (diagnose, modes, fidelity) build the scene's yarn level and
+// its continuum: either one that would not fit in memory is refused before any
+// work, as `run` refuses it (check_run_memory: SceneError, exit 2).
+void check_comparison_memory(const Scene& scene);
+
 // Options shared by the two experiments.
 struct ExperimentArgs {
   std::string scene, models, integrators, out;

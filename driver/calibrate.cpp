@@ -16,6 +16,7 @@
 #include "calibration/knit_test_patch.h"
 #include "driver/experiment_meta.h"
 #include "driver/recorded_run.h"
+#include "driver/run_settings.h"
 #include "models/fem/fem_model.h"
 #include "models/model_factory.h"
 #include "output/atomic_file.h"
@@ -172,6 +173,9 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
                     : p.scene.knit ? default_knit_patch(p.scene, std::min(size, 33))
                                    : std::max(std::min(size, 33), minimum_patch(p.scene));
   p.test_scene = material_test_scene(p.scene, patch, c.sliding);  // too small: invalid_argument
+  for (const std::string& model : {yarn_level_model(p.test_scene), std::string("fem")})
+    if (const auto expected = memory_shortfall(p.test_scene, model))  // before any allocation: exit 2
+      throw SettingError(c.patch > 0 ? "--patch" : "the default patch", std::to_string(patch), *expected);
   p.test_scene.fem.border_strip = c.border_strip;
   p.test_scene.fem.grid_line_bending = c.grid_line_bending;
   std::vector<std::string> names = c.tests.empty() ? default_test_names() : c.tests;

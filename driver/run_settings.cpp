@@ -117,20 +117,24 @@ void check_linear_solver(const Scene& scene, const Model& model, const std::map<
            " model's is not (terms " + names + ")");
 }
 
-void check_run_memory(const Scene& scene, const std::string& model_name) {
+std::optional<std::string> memory_shortfall(const Scene& scene, const std::string& model_name) {
   const MemoryEstimate e = estimate_run_memory(scene, model_name);
   const double available = available_memory_bytes();
-  const std::string value = std::to_string(scene.warps) + " (× " + std::to_string(scene.wefts) + " wefts)";
   const auto gb = [](double b) { return shortest(std::round(b / 1e8) / 10.0) + " GB"; };
   if (e.bytes > available)
-    fail(scene, {}, "cloth.warps", value,
-         "a cloth that fits in memory: the " + model_name + " model has " + std::to_string(e.dofs) +
-             " DoFs and needs about " + gb(e.bytes) + ", " + gb(available) + " available");
+    return "a cloth that fits in memory: the " + model_name + " model has " + std::to_string(e.dofs) +
+           " DoFs and needs about " + gb(e.bytes) + ", " + gb(available) + " available";
   // The model's sparsity pattern has 32-bit indices (the factorizations' are 64-bit).
   if (static_cast<double>(e.dofs) * kMaxPatternEntriesPerDof > std::numeric_limits<int>::max())
-    fail(scene, {}, "cloth.warps", value,
-         "at most " + std::to_string(std::numeric_limits<int>::max() / kMaxPatternEntriesPerDof) +
-             " DoFs (32-bit sparse pattern); the " + model_name + " model has " + std::to_string(e.dofs));
+    return "at most " + std::to_string(std::numeric_limits<int>::max() / kMaxPatternEntriesPerDof) +
+           " DoFs (32-bit sparse pattern); the " + model_name + " model has " + std::to_string(e.dofs);
+  return std::nullopt;
+}
+
+void check_run_memory(const Scene& scene, const std::string& model_name) {
+  if (const auto expected = memory_shortfall(scene, model_name))
+    fail(scene, {}, "cloth.warps", std::to_string(scene.warps) + " (× " + std::to_string(scene.wefts) + " wefts)",
+         *expected);
 }
 
 void fit_scene_times(Scene& scene, const std::map<std::string, std::string>& record) {

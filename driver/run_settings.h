@@ -56,6 +56,10 @@ void check_linear_solver(const Scene& scene, const Model& model, const std::map<
 // is allocated; the message gives the estimate.
 void check_run_memory(const Scene& scene, const std::string& model_name);
 
+// What check_run_memory expects when `model_name` on `scene` does not fit
+// ("a cloth that fits in memory: ..."), nullopt when it fits.
+std::optional<std::string> memory_shortfall(const Scene& scene, const std::string& model_name);
+
 // The forgiving rule of apply_run_overrides: a finite, positive --duration
 // (--dt) from the command line (`record`) pulls the scene's own step and
 // output interval into order with it, with a notice on stderr.

@@ -112,4 +112,24 @@ TEST_F(UpFrontChecks, AdaptiveStepsOfAnIntegratorWithoutErrorControlAreExit2) {
   EXPECT_EQ(controlled.exit_code, 0) << controlled.output;
 }
 
+// A cloth that cannot fit in memory: every comparison refuses it at once, as
+// run does, with the estimate, instead of allocating until std::bad_alloc.
+TEST_F(UpFrontChecks, AClothTooLargeForMemoryIsExit2AtOnce) {
+  const fs::path huge = write("huge.toml", "[cloth]\nwarps = 16384\nwefts = 16384\n");
+  for (const char* subcommand : {"run", "diagnose", "modes", "fidelity"}) {
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = command(subcommand, huge, out());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exit_code, 2) << subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r, "huge.toml:") && has(r, "cloth.warps") && has(r, "fits in memory")) << subcommand << "\n"
+                                                                                           << r.output;
+    EXPECT_LT(seconds, 5.0) << subcommand;
+    EXPECT_FALSE(fs::exists(out())) << subcommand;
+  }
+  const Result r = command("calibrate", tiny(), out(), "--patch 100000");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(has(r, "'--patch': got 100000") && has(r, "fits in memory")) << r.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
 }  // namespace
