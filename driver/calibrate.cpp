@@ -242,6 +242,10 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
   }
   for (const auto& v : c.validate) {
     p.validation_scenes.push_back(at_time_steps(load_scene(v.string()), c.time_steps));
+    // Its initial state, as `run` checks it (a node inside an obstacle: invalid_argument), before anything is written.
+    const Scene& vs = p.validation_scenes.back();
+    check_run_memory(vs, yarn_level_model(vs));
+    (void)make_model(vs, yarn_level_model(vs));
     p.validation_texts.push_back(read_text_file(v));
   }
   return p;

@@ -136,6 +136,9 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
   Scene fem_scene = yarn_scene;
   if (c.fem_params) fem_scene.fem.parameter_file = c.fem_params->string();
   (void)fem_material(fem_scene);  // a bad file: FemParameterError, before anything is written
+  // Each side's initial state, as `run` checks it (a node inside an obstacle: invalid_argument).
+  for (const auto& [scene, side] : {std::pair{&yarn_scene, "yarn"}, std::pair{&fem_scene, "fem"}})
+    (void)make_model(*scene, model_of_side(*scene, side));
 
   std::filesystem::create_directories(c.out_dir);
   CsvTable energies(c.out_dir / "energies.csv", {"time_s", "model", "quantity", "value_J"});

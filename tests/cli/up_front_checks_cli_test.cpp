@@ -132,4 +132,27 @@ TEST_F(UpFrontChecks, AClothTooLargeForMemoryIsExit2AtOnce) {
   EXPECT_FALSE(fs::exists(out()));
 }
 
+// A node that starts inside an obstacle: the comparisons check the scene's
+// initial state before writing, as run does, and leave no partial file.
+TEST_F(UpFrontChecks, ANodeStartingInsideAnObstacleWritesNothing) {
+  const std::string flat = "[cloth]\nwarps = 5\nwefts = 5\n[pose]\nkind = \"flat\"\n",
+                    time = "[time]\nduration_s = 0.004\noutput_interval_s = 0.002\n";
+  const fs::path inside =
+      write("inside.toml",
+            flat + "[[obstacles]]\nshape = \"sphere\"\ncenter_m = [0.002, 0.002, 0]\nradius_m = 0.0015\n" + time);
+  const Result run = command("run", inside, out());
+  ASSERT_EQ(run.exit_code, 2) << run.output;
+  ASSERT_TRUE(has(run, "inside.toml:6: obstacles[0]")) << run.output;
+  const Result diagnose = command("diagnose", inside, out());
+  EXPECT_EQ(diagnose.exit_code, 2) << diagnose.output;
+  EXPECT_TRUE(has(diagnose, "inside.toml:6: obstacles[0]") && has(diagnose, "starts inside")) << diagnose.output;
+  EXPECT_FALSE(fs::exists(out()));
+  const fs::path plain = write("flat.toml", flat + time);
+  const Result calibrate =
+      command("calibrate", plain, out(), "--tests shear --validate " + shell_quote(inside.string()));
+  EXPECT_EQ(calibrate.exit_code, 2) << calibrate.output;
+  EXPECT_TRUE(has(calibrate, "inside.toml:6: obstacles[0]")) << calibrate.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
 }  // namespace
