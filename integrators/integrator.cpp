@@ -9,6 +9,7 @@
 
 #include "integrators/step_clock.h"
 #include "models/core/sliding_coordinates.h"
+#include "models/core/term_model.h"
 
 namespace wl {
 
@@ -36,6 +37,24 @@ StepResult check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt)
   return {};
 }
 
+namespace {
+
+// What restricts a model's states, in words: "rigid obstacles", "self-contact" or both,
+// from its terms that constrain steps ("admissible states" for a model without terms).
+std::string step_constraints_of(const Model& model) {
+  const auto* terms = dynamic_cast<const TermModel*>(&model);
+  if (!terms) return "its own restrictions";
+  bool obstacles = false, self_contact = false;
+  for (const auto& t : terms->terms()) {
+    if (!t->constrains_steps()) continue;
+    (t->name() == "self_contact" ? self_contact : obstacles) = true;
+  }
+  if (obstacles && self_contact) return "rigid obstacles and self-contact";
+  return self_contact ? "self-contact" : "rigid obstacles";
+}
+
+}  // namespace
+
 StepResult Integrator::check_state(const Vec& q, const Vec& v, const IntegratorOptions& opt) const {
   if (std::string why = model_->invalid_state(q); !why.empty()) return {Outcome::invalid_state, why};
   return wl::check_state(q, v, opt);
@@ -50,8 +69,9 @@ void Integrator::bind(Model& model, double t0, const Vec& q0, const Vec& v0, con
   fixed_.assign(model.fixed_dofs().begin(), model.fixed_dofs().end());
   refusal_.clear();
   if (model.constrains_steps() && !capabilities().admissible_steps)
-    refusal_ = "integrator '" + name() + "' is not offered for a model with admissible states (rigid obstacles): " +
-               "its library steps cannot be shortened to keep nodes outside (docs/design.md §3.6)";
+    refusal_ = "integrator '" + name() + "' is not offered for a model with admissible states (" +
+               step_constraints_of(model) + "): its library steps cannot be shortened to keep them (docs/design.md " +
+               "§3.6)";
   for (int i : fixed_) v_[i] = 0.0;
   stats_ = {};
   if (!sensitivity_keys_.empty()) {

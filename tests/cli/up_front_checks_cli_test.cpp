@@ -155,4 +155,14 @@ TEST_F(UpFrontChecks, ANodeStartingInsideAnObstacleWritesNothing) {
   EXPECT_FALSE(fs::exists(out()));
 }
 
+// An integrator that cannot keep a model's admissible states names what the
+// scene has: here self-contact, no obstacle.
+TEST_F(UpFrontChecks, ARefusedIntegratorNamesTheScenesOwnConstraint) {
+  const fs::path self = write("self.toml", text_of(tiny()) + "\n[self_contact]\nenabled = true\n");
+  const Result r = command("run", self, out(), "--integrator ida");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(has(r, "not offered for a model with admissible states (self-contact)")) << r.output;
+  EXPECT_FALSE(has(r, "obstacle")) << r.output;
+}
+
 }  // namespace
