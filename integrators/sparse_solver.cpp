@@ -88,8 +88,9 @@ class OneThreadRegions {
 class Cholesky : public Eigen::CholmodDecomposition<Matrix64, Eigen::Lower> {
  public:
   // A matrix that is not positive definite is an outcome the caller handles (factorize() reports
-  // it, the solver falls back to LU), not a message: CHOLMOD prints errors only.
-  Cholesky() { cholmod().print = 1; }
+  // it, the solver falls back to LU), not a message. CHOLMOD prints nothing at print level 0: at 1
+  // its error handler still prints that warning (CHOLMOD_NOT_POSDEF > 0), labelled "CHOLMOD error".
+  Cholesky() { cholmod().print = 0; }
   Cholesky(const Cholesky&) = delete;
   Cholesky& operator=(const Cholesky&) = delete;
   ~Cholesky() {

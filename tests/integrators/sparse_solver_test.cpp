@@ -181,5 +181,26 @@ TEST(SparseSolver, TrajectoriesAgreeAndRerunsAreBitwiseIdentical) {
   EXPECT_EQ((again - gmres).lpNorm<Eigen::Infinity>(), 0.0);
 }
 
+// A matrix that is not positive definite is an outcome factorize() reports (and
+// automatic falls back to LU on), not a message: CHOLMOD's printing stays silent
+// (at its print level 1 it printed this warning as "CHOLMOD error: ...").
+TEST(SparseSolver, CholeskyOfAnIndefiniteMatrixReportsItWithoutPrinting) {
+  SparseMatrix a(3, 3);
+  a.insert(0, 0) = 2.0;
+  a.insert(1, 1) = -1.0;
+  a.insert(2, 2) = 2.0;
+  a.insert(0, 1) = a.insert(1, 0) = 0.5;
+  a.makeCompressed();
+  SparseSolver s(a, {}, {LinearSolverMethod::cholmod, {}});
+  testing::internal::CaptureStdout();
+  testing::internal::CaptureStderr();
+  const bool factorized = s.factorize(a);
+  const std::string out = testing::internal::GetCapturedStdout(), err = testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(factorized);
+  EXPECT_NE(s.failure().find("not positive definite"), std::string::npos) << s.failure();
+  EXPECT_EQ(out, "");
+  EXPECT_EQ(err, "");
+}
+
 }  // namespace
 }  // namespace wl
