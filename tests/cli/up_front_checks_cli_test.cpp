@@ -29,11 +29,11 @@ class UpFrontChecks : public ::testing::Test {
     return dir_ / name;
   }
   static Result cli(const std::string& args) { return wl::test::run_command(std::string(WEAVELAB_CLI) + " " + args); }
-  // `subcommand` on `scene` with --quiet and --out `out`, then `options`.
+  // `subcommand` on `scene` with --quiet (`pull` has none) and --out `out`, then `options`.
   static Result command(const std::string& subcommand, const fs::path& scene, const fs::path& out,
                         const std::string& options = "") {
-    return cli(subcommand + " " + shell_quote(scene.string()) + " --quiet --out " + shell_quote(out.string()) + " " +
-               options);
+    return cli(subcommand + " " + shell_quote(scene.string()) + (subcommand == "pull" ? "" : " --quiet") + " --out " +
+               shell_quote(out.string()) + " " + options);
   }
   static bool has(const Result& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
   wl::test::ScratchDir dir_;
@@ -99,7 +99,7 @@ TEST_F(UpFrontChecks, AnOutNamingAFileIsExit2BeforeAnyWork) {
 // be-linear has no error control (IntegratorCapabilities::controls_error):
 // --rtol or --adaptive would run its fixed steps while the record said adaptive.
 TEST_F(UpFrontChecks, AdaptiveStepsOfAnIntegratorWithoutErrorControlAreExit2) {
-  for (const std::string& options : {"--integrator be-linear --rtol 1e-3", "--integrator be-linear --adaptive"}) {
+  for (const std::string options : {"--integrator be-linear --rtol 1e-3", "--integrator be-linear --adaptive"}) {
     const Result r = command("run", tiny(), out(), options);
     EXPECT_EQ(r.exit_code, 2) << options << "\n" << r.output;
     EXPECT_TRUE(has(r, options.find("rtol") != std::string::npos ? "'--rtol'" : "'--adaptive'")) << options << "\n"

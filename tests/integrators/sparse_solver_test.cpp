@@ -184,13 +184,13 @@ TEST(SparseSolver, TrajectoriesAgreeAndRerunsAreBitwiseIdentical) {
 // A matrix that is not positive definite is an outcome factorize() reports (and
 // automatic falls back to LU on), not a message: CHOLMOD's printing stays silent
 // (at its print level 1 it printed this warning as "CHOLMOD error: ...").
+// Dense, so that CHOLMOD chooses its supernodal LLᵀ (a simplicial LDLᵀ would
+// factorize it): 0.01 everywhere plus I, with −1 at the last diagonal entry.
 TEST(SparseSolver, CholeskyOfAnIndefiniteMatrixReportsItWithoutPrinting) {
-  SparseMatrix a(3, 3);
-  a.insert(0, 0) = 2.0;
-  a.insert(1, 1) = -1.0;
-  a.insert(2, 2) = 2.0;
-  a.insert(0, 1) = a.insert(1, 0) = 0.5;
-  a.makeCompressed();
+  const int n = 300;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Constant(n, n, 0.01) + Eigen::MatrixXd::Identity(n, n);
+  dense(n - 1, n - 1) = -1.0;
+  const SparseMatrix a = dense.sparseView();
   SparseSolver s(a, {}, {LinearSolverMethod::cholmod, {}});
   testing::internal::CaptureStdout();
   testing::internal::CaptureStderr();
