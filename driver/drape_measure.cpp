@@ -76,7 +76,7 @@ std::optional<Shadow> rasterize_shadow(const Frame& frame, double pixel_m) {
   const double x_lo = frame.points.col(0).minCoeff(), x_hi = frame.points.col(0).maxCoeff();
   const double y_lo = frame.points.col(1).minCoeff(), y_hi = frame.points.col(1).maxCoeff();
   const double nx = std::ceil((x_hi - x_lo) / pixel_m), ny = std::ceil((y_hi - y_lo) / pixel_m);
-  if (!(nx * ny <= kMaxShadowPixels)) return std::nullopt;
+  if (!(nx * ny <= kMaxShadowPixels && nx <= kMaxShadowPixels && ny <= kMaxShadowPixels)) return std::nullopt;
   s.x0 = x_lo;
   s.y0 = y_lo;
   s.nx = static_cast<int>(nx);
