@@ -127,9 +127,10 @@ TEST_F(RunReader, RefusesMoreFramesThanARunWrites) {
     files.push_back("run_0.vtu");
   }
   write_pvd(times, files);
-  EXPECT_NE(refusal().find(":" + std::to_string(static_cast<int>(kMaxFrames) + 5) + ": more than 100001 frames"),
-            std::string::npos)
-      << refusal();
+  std::string expected = ":";
+  expected += std::to_string(static_cast<int>(kMaxFrames) + 5);
+  expected += ": more than 100001 frames";
+  EXPECT_NE(refusal().find(expected), std::string::npos) << refusal();
 }
 
 }  // namespace
