@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Builds the test suite with AddressSanitizer and UndefinedBehaviorSanitizer
 # (Debug: assertions on, at -O1 so the suite runs in reasonable time) in
-# build-sanitize/ and runs it; any sanitizer report fails the test that
-# triggered it. Arguments go to ctest, e.g. `tests/sanitize.sh -R IntegratorSuite`
-# for a subset (default: the whole suite less the long simulations listed in
-# tests/sanitize_skip.txt, which the Release suite runs). Slow (docs/design.md §10).
+# build-sanitize/ and runs it; any sanitizer report fails the run, the test that
+# triggered it being the last one its log names. Arguments go to ctest, e.g. `tests/sanitize.sh -R IntegratorSuite`
+# for a subset through ctest (default: the whole gtest suite less the long
+# simulations listed in tests/sanitize_skip.txt, which the Release suite runs).
+# Slow (docs/design.md §10).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Under AddressSanitizer Eigen switches to its own aligned allocator, while the
@@ -19,8 +20,30 @@ cmake --build build-sanitize -j"$(nproc)" --target weavelab_tests
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 cd build-sanitize
-if [ $# -eq 0 ]; then
-  skip=$(grep -v '^#' ../tests/sanitize_skip.txt | grep -v '^$' | sed 's/\./\\./g' | paste -sd'|')
-  set -- -E "^(${skip})\$"
+if [ $# -gt 0 ]; then
+  exec ctest --output-on-failure -j"$(nproc)" "$@"
 fi
-ctest --output-on-failure -j"$(nproc)" "$@"
+# The whole suite: the gtest program itself, split into one shard per core
+# (GTEST_TOTAL_SHARDS), rather than ctest's one process per test, whose start-up
+# under the sanitizers costs more than most tests. A shard's log is printed in
+# full when it fails.
+skip=$(grep -v '^#' ../tests/sanitize_skip.txt | grep -v '^$' | paste -sd':')
+shards=$(nproc)
+pids=()
+for ((k = 0; k < shards; ++k)); do
+  GTEST_TOTAL_SHARDS=$shards GTEST_SHARD_INDEX=$k \
+    timeout "${WEAVELAB_SHARD_TIMEOUT:-3000}" ./weavelab_tests --gtest_filter="-${skip}" \
+    >"shard_$k.log" 2>&1 &
+  pids+=($!)
+done
+failed=0
+for ((k = 0; k < shards; ++k)); do
+  if wait "${pids[$k]}"; then
+    grep -E '^\[  PASSED  \]|^\[  SKIPPED \]' "shard_$k.log" | sed "s/^/shard $k: /"
+  else
+    echo "shard $k failed (exit $?): its log follows" >&2
+    cat "shard_$k.log" >&2
+    failed=1
+  fi
+done
+exit $failed
