@@ -3,7 +3,10 @@
 #include <ceres/ceres.h>
 
 #include <cmath>
+#include <functional>
 #include <memory>
+#include <stdexcept>
+#include <vector>
 
 namespace wl {
 namespace {
@@ -14,12 +17,35 @@ std::array<double, 6> normalized(const MacroStrain& theta, const std::array<doub
   return t;
 }
 
-// The (k, l) pair of coupling slot p (k < l), in the order of the basis.
-std::pair<int, int> pair_of(int p) {
-  for (int k = 0, n = 0; k < 6; ++k)
-    for (int l = k + 1; l < 6; ++l, ++n)
-      if (n == p) return {k, l};
-  return {-1, -1};
+// The exponents of every basis function, in the order of the header.
+const std::vector<std::array<int, 6>>& basis_exponents() {
+  static const std::vector<std::array<int, 6>> exponents = [] {
+    std::vector<std::array<int, 6>> e;
+    // Every exponent vector of total degree 2 … kTileLawDegree, in lexicographic order, kept by its class.
+    std::array<int, 6> x{};
+    auto keep = [](const std::array<int, 6>& v) {
+      int degree = 0, variables = 0;
+      for (int k = 0; k < 6; ++k) degree += v[k], variables += v[k] > 0;
+      if (degree < 2) return false;
+      if (variables == 1) return true;
+      return degree <= (variables == 2 ? kTileLawCouplingDegree : kTileLawMixedDegree);
+    };
+    std::function<void(int, int)> walk = [&](int k, int left) {
+      if (k == 6) {
+        if (keep(x)) e.push_back(x);
+        return;
+      }
+      for (int d = 0; d <= left; ++d) {
+        x[k] = d;
+        walk(k + 1, left - d);
+      }
+      x[k] = 0;
+    };
+    walk(0, kTileLawDegree);
+    if (static_cast<int>(e.size()) != kTileLawBasisSize) throw std::logic_error("tile law: basis size");
+    return e;
+  }();
+  return exponents;
 }
 
 // The residuals of one sample: energy and six stresses, linear in c.
@@ -60,26 +86,18 @@ class TileSampleCost final : public ceres::CostFunction {
 }  // namespace
 
 void tile_law_basis(const std::array<double, 6>& t, double* phi, double* dphi) {
-  std::fill(dphi, dphi + 6 * kTileLawBasisSize, 0.0);
-  int i = 0;
-  for (int k = 0; k < 6; ++k)
-    for (int d = 2; d <= kTileLawDegree; ++d, ++i) {
-      phi[i] = std::pow(t[k], d);
-      dphi[6 * i + k] = d * std::pow(t[k], d - 1);
-    }
-  for (int p = 0; p < 15; ++p) {
-    const auto [k, l] = pair_of(p);
-    const double a = t[k], b = t[l];
-    // t_k t_l, t_k² t_l, t_k t_l², t_k² t_l²
-    const std::array<std::array<double, 3>, 4> f{{{a * b, b, a},
-                                                  {a * a * b, 2 * a * b, a * a},
-                                                  {a * b * b, b * b, 2 * a * b},
-                                                  {a * a * b * b, 2 * a * b * b, 2 * a * a * b}}};
-    for (const auto& [value, dk, dl] : f) {
-      phi[i] = value;
-      dphi[6 * i + k] = dk;
-      dphi[6 * i + l] = dl;
-      ++i;
+  const std::vector<std::array<int, 6>>& exponents = basis_exponents();
+  for (int i = 0; i < kTileLawBasisSize; ++i) {
+    const std::array<int, 6>& e = exponents[i];
+    std::array<double, 6> power{};  // t_k^{e_k}
+    for (int k = 0; k < 6; ++k) power[k] = std::pow(t[k], e[k]);
+    phi[i] = 1.0;
+    for (int k = 0; k < 6; ++k) phi[i] *= power[k];
+    for (int k = 0; k < 6; ++k) {
+      double d = e[k] == 0 ? 0.0 : e[k] * std::pow(t[k], e[k] - 1);
+      for (int l = 0; l < 6; ++l)
+        if (l != k) d *= power[l];
+      dphi[6 * i + k] = d;
     }
   }
 }
@@ -105,14 +123,16 @@ std::array<double, 6> TileLaw::stress(const MacroStrain& theta) const {
 }
 
 std::string TileLaw::basis_name(int i) {
-  const int powers = 6 * (kTileLawDegree - 1);
-  if (i < powers)
-    return std::string("power:") + kMacroStrainNames[i / (kTileLawDegree - 1)] + "^" +
-           std::to_string(2 + i % (kTileLawDegree - 1));
-  const auto [k, l] = pair_of((i - powers) / 4);
-  const std::array<const char*, 4> ek{"", "^2", "", "^2"}, el{"", "", "^2", "^2"};
-  const int form = (i - powers) % 4;
-  return std::string("coupling:") + kMacroStrainNames[k] + ek[form] + "*" + kMacroStrainNames[l] + el[form];
+  std::string name;
+  for (int k = 0; k < 6; ++k) {
+    const int e = basis_exponents()[i][k];
+    if (e == 0) continue;
+    // Appends (GCC 12's -Wrestrict false positive on operator+ under -Werror).
+    if (!name.empty()) name += '*';
+    name += kMacroStrainNames[k];
+    if (e > 1) name += '^' + std::to_string(e);
+  }
+  return name;
 }
 
 TileLawFit fit_tile_law(const std::vector<TileSample>& samples, const std::array<double, 6>& scale) {
@@ -140,6 +160,7 @@ TileLawFit fit_tile_law(const std::vector<TileSample>& samples, const std::array
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = 50;
+  options.initial_trust_region_radius = 1e16;  // linear in c: the first step is the least-squares solution
   // The law is linear in c: solve to round-off, not to Ceres' default relative decrease.
   options.function_tolerance = 1e-15;
   options.gradient_tolerance = 1e-16;

@@ -1,8 +1,10 @@
 // A continuum law fitted to the periodic tile's samples (docs/calibration.md §9.3):
 // in the normalized strains t_k = θ_k / s_k (s_k the half-width of the sampled range),
 //   W(θ) = W₀ Σ_i c_i φ_i(t),
-// with the basis φ: every component's powers t_k^d (d = 2 … 8) and, for
-// every pair k < l, the couplings t_k t_l, t_k² t_l, t_k t_l², t_k² t_l².
+// with the basis φ of monomials Π t_k^{e_k} of total degree 2 … 8: every
+// component's powers (to degree 8), the pairs' couplings t_k^a t_l^b (to
+// degree 6) and the couplings of three or more strains (to degree 4), such
+// as γ κ_u κ_uv (a sheared cloth's bend–twist coupling).
 // No constant or linear term: the woven tile at rest is stress-free. The
 // stress is ∂W/∂θ_k = (W₀ / s_k) Σ_i c_i ∂φ_i/∂t_k. Ceres fits c to the
 // samples' energies and stresses: per sample the residuals
@@ -17,9 +19,9 @@
 
 namespace wl {
 
-inline constexpr int kTileLawDegree = 8;
-// 6·(degree − 1) powers and 15·4 couplings.
-inline constexpr int kTileLawBasisSize = 6 * (kTileLawDegree - 1) + 15 * 4;
+inline constexpr int kTileLawDegree = 8, kTileLawCouplingDegree = 6, kTileLawMixedDegree = 4;
+// 6·7 powers, 15 pairs × 15 couplings, and the 95 monomials of 3 or 4 strains to degree 4.
+inline constexpr int kTileLawBasisSize = 6 * 7 + 15 * 15 + 95;
 
 struct TileLaw {
   std::array<double, 6> scale{1, 1, 1, 1, 1, 1};  // s_k
@@ -27,7 +29,7 @@ struct TileLaw {
   std::vector<double> coefficients = std::vector<double>(kTileLawBasisSize, 0.0);
   double energy(const MacroStrain& theta) const;
   std::array<double, 6> stress(const MacroStrain& theta) const;
-  // "power:stretch_warp^2" or "coupling:shear^2*twist" for basis function i.
+  // "stretch_warp^2" or "shear^2*twist" for basis function i.
   static std::string basis_name(int i);
 };
 

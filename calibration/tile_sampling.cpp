@@ -39,6 +39,9 @@ TileSample relax_tile(const Scene& scene, const MacroStrain& theta, const Mat3& 
   EquilibriumSolver solver(tile, {});
   EquilibriumOptions options;
   options.atol = kTileTolerance * stiffest_ks(scene);
+  // Where Newton stalls (compressed yarns in a bent tile buckle: indefinite
+  // stiffness), energy descent from the same start to the same tolerance.
+  options.descent_tolerance = options.atol;
   const EquilibriumResult r = solver.solve(q, options);
   TileSample s;
   s.strain = theta;

@@ -174,7 +174,7 @@ TEST(TileLaw, FitRecoversKnownLaw) {
   std::uniform_real_distribution<double> coef(-1.0, 1.0);
   for (double& c : truth.coefficients) c = coef(rng);
   std::vector<TileSample> samples;
-  for (const MacroStrain& theta : latin_hypercube(r, 300, 5)) {
+  for (const MacroStrain& theta : latin_hypercube(r, 150, 5)) {
     TileSample s;
     s.strain = theta;
     s.energy_density = truth.energy(theta);
