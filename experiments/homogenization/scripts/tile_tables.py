@@ -6,7 +6,7 @@ CELL holds tiles.json and held_out.csv (the held-out samples beside the law).
 SAMPLING_CSV: the tile, the number of samples and converged ones, the sampling
 wall and CPU time. ERRORS_CSV: the law's relative RMS errors on the fitted and
 the held-out samples (energy and each stress). FIGURE_PNG: the held-out
-samples' energy against the law's.
+samples' energy and warp moment against the law's.
 """
 import csv
 import json
@@ -40,18 +40,22 @@ def main(argv):
                        + [e["stress_relative_rms"][n] for n in NAMES] + [e["stress_relative_rms_max"]])
     with open(os.path.join(cell, "held_out.csv"), newline="") as f:
         held = list(csv.DictReader(f))
-    sample_w = [float(r["W_J_per_m2"]) for r in held]
-    fitted_w = [float(r["law_W_J_per_m2"]) for r in held]
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(5, 4.5))
-    ax.plot(sample_w, fitted_w, ".", ms=4)
-    lim = [min(sample_w + fitted_w), max(sample_w + fitted_w)]
-    ax.plot(lim, lim, "k-", lw=0.7)
-    ax.set_xlabel("tile energy density W [J/m²] (held-out samples)")
-    ax.set_ylabel("law's W [J/m²]")
-    ax.set_title(f"{summary['tile']} tile, {len(held)} held-out samples")
+    fig, axes = plt.subplots(1, 2, figsize=(9, 4.3))
+    panels = [("W_J_per_m2", "law_W_J_per_m2", "energy density W [J/m²]"),
+              ("dW_dcurvature_warp", "law_dW_dcurvature_warp", "warp moment ∂W/∂κ_u [N]")]
+    for ax, (sample_key, law_key, label) in zip(axes, panels):
+        xs = [float(r[sample_key]) for r in held]
+        ys = [float(r[law_key]) for r in held]
+        ax.plot(xs, ys, ".", ms=3)
+        lim = [min(xs + ys), max(xs + ys)]
+        ax.plot(lim, lim, "k-", lw=0.7)
+        ax.set_xlabel(f"tile: {label}")
+        ax.set_ylabel(f"law: {label}")
+    fig.suptitle(f"{summary['tile']} tile, {len(held)} held-out samples")
+    fig.tight_layout()
     save_figure(fig, figure)
 
 
