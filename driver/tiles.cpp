@@ -20,6 +20,12 @@ void check_config(const Scene& scene, const TilesConfig& config) {
   if (config.fit && config.holdout_every < 2)
     throw std::invalid_argument("tiles: --holdout-every " + std::to_string(config.holdout_every) +
                                 ": expected at least 2 (one sample in that many held out of the fit)");
+  // One fitted sample per coefficient at least: the samples not held out.
+  const int fitted = config.samples - config.samples / std::max(config.holdout_every, 1);
+  if (config.fit && fitted < kTileLawBasisSize)
+    throw std::invalid_argument("tiles: --samples " + std::to_string(config.samples) + ": the law's " +
+                                std::to_string(kTileLawBasisSize) + " coefficients need at least as many fitted " +
+                                "samples, " + std::to_string(fitted) + " are fitted (more samples, or --no-fit)");
 }
 
 // The samples of the design: from the cache when it holds them, else relaxed and cached.

@@ -5,7 +5,10 @@
 
 #include <Eigen/Geometry>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "calibration/tile_law.h"
@@ -162,6 +165,32 @@ TEST(TileSampling, LatinHypercubeFillsEveryStratumOnce) {
     for (int h : hits) EXPECT_EQ(h, 1) << kMacroStrainNames[k];
   }
   EXPECT_NE(latin_hypercube(r, n, 8)[0][0], pts[0][0]);
+}
+
+// The cache: samples read back exactly under their key, not under another fabric's.
+TEST(TileSampling, CacheReadsBackUnderItsKeyOnly) {
+  Scene scene = plain_12();
+  const TileRanges r = default_tile_ranges(scene);
+  std::vector<TileSample> samples;
+  for (const MacroStrain& theta : latin_hypercube(r, 3, 1)) samples.push_back(relax_tile(scene, theta));
+  const std::string key = tile_fabric_key(scene, r, 3, 1);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("weavelab_tile_cache_" + std::to_string(::getpid()) + ".csv");
+  write_tile_samples(file, key, samples);
+  const auto back = read_tile_samples(file, key);
+  ASSERT_TRUE(back.has_value());
+  ASSERT_EQ(back->size(), samples.size());
+  for (size_t p = 0; p < samples.size(); ++p) {
+    EXPECT_EQ((*back)[p].strain, samples[p].strain);
+    EXPECT_EQ((*back)[p].energy_density, samples[p].energy_density);
+    EXPECT_EQ((*back)[p].stress, samples[p].stress);
+    EXPECT_EQ((*back)[p].converged, samples[p].converged);
+  }
+  scene.yarn_types.at("yarn2").bending_modulus_Pa *= 1.01;
+  const std::string other = tile_fabric_key(scene, r, 3, 1);
+  EXPECT_NE(other, key);
+  EXPECT_FALSE(read_tile_samples(file, other).has_value());
+  std::filesystem::remove(file);
 }
 
 // Samples made by a known law: the fit finds its coefficients again.

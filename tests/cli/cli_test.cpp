@@ -558,6 +558,7 @@ TEST_F(Cli, TilesBadSamplingOptionsAreRejected) {
   const std::vector<std::pair<std::string, std::string>> cases{
       {"--samples 1", "--samples 1: expected at least 2"},
       {"--holdout-every 1", "--holdout-every 1: expected at least 2"},
+      {"--samples 100", "--samples 100: the law's"},
       {"--range shear=0.5,0.1", "--range shear=0.5,0.1: expected finite LO < HI"},
       {"--range bend=0,1", "--range bend=0,1: unknown strain 'bend'"},
       {"--range twist=a,1", "--range twist=a,1: LO and HI must be numbers"},
