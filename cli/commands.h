@@ -21,5 +21,6 @@ Command add_fit_command(CLI::App& app);             // fit SCENE --target RUN_DI
 Command add_diagnose_command(CLI::App& app);        // diagnose SCENE
 Command add_modes_command(CLI::App& app);           // modes SCENE
 Command add_pull_command(CLI::App& app);            // pull SCENE
+Command add_tiles_command(CLI::App& app);           // tiles SCENE
 
 }  // namespace wl::cli

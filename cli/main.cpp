@@ -1,7 +1,7 @@
 // weavelab command line: `weavelab run SCENE`, `weavelab info SCENE`,
 // `weavelab work-precision SCENE`, `weavelab stability SCENE`,
 // `weavelab calibrate SCENE`, `weavelab fidelity SCENE`, `weavelab fit SCENE --target RUN_DIR`,
-// `weavelab diagnose SCENE`, `weavelab modes SCENE`, `weavelab pull SCENE`.
+// `weavelab diagnose SCENE`, `weavelab modes SCENE`, `weavelab pull SCENE`, `weavelab tiles SCENE`.
 // Each subcommand is its own file (cli/<name>_command.cpp); the exit codes are
 // cli/exit_codes.h's: 0 success, 1 numerical failure (outcome in the summary),
 // 2 bad scene, input file or arguments, or an output folder in use,
@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
       add_run_command(app),       add_info_command(app),      add_work_precision_command(app),
       add_stability_command(app), add_calibrate_command(app), add_fidelity_command(app),
       add_fit_command(app),       add_diagnose_command(app),  add_modes_command(app),
-      add_pull_command(app)};
+      add_pull_command(app),      add_tiles_command(app)};
 
   try {
     app.parse(argc, argv);

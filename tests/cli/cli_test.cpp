@@ -549,3 +549,28 @@ TEST_F(Cli, RunRejectsABadFemParameterFile) {
   EXPECT_NE(r.output.find(params.string() + ":2: key 'colour'"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
 }
+
+// `tiles` (docs/calibration.md §9): a bad sampling option or a knitted scene
+// exits 2 naming the option and its value, before anything is written.
+TEST_F(Cli, TilesBadSamplingOptionsAreRejected) {
+  const std::string knit = WEAVELAB_SOURCE_DIR "/experiments/scenes/knit_stockinette.toml";
+  const fs::path out = dir_ / "tiles";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--samples 1", "--samples 1: expected at least 2"},
+      {"--holdout-every 1", "--holdout-every 1: expected at least 2"},
+      {"--samples 100", "--samples 100: the law's"},
+      {"--range shear=0.5,0.1", "--range shear=0.5,0.1: expected finite LO < HI"},
+      {"--range bend=0,1", "--range bend=0,1: unknown strain 'bend'"},
+      {"--range twist=a,1", "--range twist=a,1: LO and HI must be numbers"},
+      {"--range twist", "--range twist: expected NAME=LO,HI"}};
+  for (const auto& [args, fragment] : cases) {
+    Result r = run_cli("tiles '" + kHangingWind + "' " + args + " --out '" + out.string() + "'", dir_);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(fragment), std::string::npos) << args << ": missing '" << fragment << "' in " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+  Result r = run_cli("tiles '" + knit + "' --out '" + out.string() + "'", dir_);
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("is knitted"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
