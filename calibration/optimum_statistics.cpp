@@ -21,7 +21,8 @@ std::vector<int> unidentifiable_columns(const Eigen::MatrixXd& jacobian, std::ve
   // tie (two zero columns, whose null vectors may mix them) then costs one more pass.
   std::vector<int> free(n), held;
   for (int k = 0; k < n; ++k) free[k] = k;
-  if (jacobian.rows() == 0) return free;  // no residual tells any
+  if (jacobian.rows() == 0) return free;   // no residual tells any
+  if (!jacobian.allFinite()) return held;  // nothing to decompose: JacobiSVD is undefined on it
   while (!free.empty()) {
     Eigen::MatrixXd part(jacobian.rows(), static_cast<Eigen::Index>(free.size()));
     for (size_t k = 0; k < free.size(); ++k) part.col(static_cast<Eigen::Index>(k)) = jacobian.col(free[k]);

@@ -28,7 +28,8 @@ struct OptimumStatistics {
 // The columns of a Jacobian J (m × n) the data cannot tell (a zero column, or one
 // collinear with others), in increasing order: while the smallest singular value of
 // the columns not yet held is at most 1e-7 of their largest, the dominant entry of
-// its right singular vector is held. An all-zero or empty J tells none.
+// its right singular vector is held. An all-zero or empty J tells none; one with a
+// non-finite entry is not decomposed (nothing held).
 // `singular_values`, when given, receives J's, largest first.
 std::vector<int> unidentifiable_columns(const Eigen::MatrixXd& jacobian,
                                         std::vector<double>* singular_values = nullptr);

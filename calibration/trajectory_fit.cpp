@@ -541,7 +541,9 @@ TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetF
   } catch (const std::invalid_argument& e) {
     throw TrajectoryFitError(e.what());
   }
-  if (!(opt.bound_factor > 1.0)) throw TrajectoryFitError("bound factor must be > 1");
+  if (!(opt.bound_factor > 1.0 && std::isfinite(opt.bound_factor)))
+    throw TrajectoryFitError("bound factor: got " + std::to_string(opt.bound_factor) +
+                             ", expected a finite number > 1");
   std::vector<TargetFrame> frames;
   for (const TargetFrame& f : target)
     if (f.time > 0.0) frames.push_back(f);

@@ -89,6 +89,8 @@ TEST(OptimumStatistics, ZeroAndCollinearColumnsAreUnidentifiable) {
   j.col(1) << 0, 1, 1, 0;
   j.col(2) << 0, 0, 1e-3, 1;  // small but independent: told
   EXPECT_TRUE(unidentifiable_columns(j).empty());
+  j(0, 0) = std::numeric_limits<double>::quiet_NaN();  // not decomposed
+  EXPECT_TRUE(unidentifiable_columns(j).empty());
 }
 
 }  // namespace
