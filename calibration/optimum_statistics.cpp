@@ -9,6 +9,37 @@
 
 namespace wl {
 
+std::vector<int> unidentifiable_columns(const Eigen::MatrixXd& jacobian, std::vector<double>* singular_values) {
+  const int n = static_cast<int>(jacobian.cols());
+  if (singular_values) {
+    const Eigen::VectorXd sv =
+        jacobian.rows() ? Eigen::VectorXd(jacobian.jacobiSvd().singularValues()) : Eigen::VectorXd::Zero(0);
+    singular_values->assign(sv.data(), sv.data() + sv.size());
+  }
+  // One column at a time: the dominant entry of the weakest right singular vector
+  // of the columns still held free, until the weakest is above the threshold. A
+  // tie (two zero columns, whose null vectors may mix them) then costs one more pass.
+  std::vector<int> free(n), held;
+  for (int k = 0; k < n; ++k) free[k] = k;
+  if (jacobian.rows() == 0) return free;   // no residual tells any
+  if (!jacobian.allFinite()) return held;  // nothing to decompose: JacobiSVD is undefined on it
+  while (!free.empty()) {
+    Eigen::MatrixXd part(jacobian.rows(), static_cast<Eigen::Index>(free.size()));
+    for (size_t k = 0; k < free.size(); ++k) part.col(static_cast<Eigen::Index>(k)) = jacobian.col(free[k]);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(part, Eigen::ComputeFullV);
+    const Eigen::VectorXd& sv = svd.singularValues();
+    const Eigen::Index count = part.cols(), weakest = count - 1;  // missing values (fewer rows) are zero
+    const double largest = sv.size() ? sv[0] : 0.0, least = weakest < sv.size() ? sv[weakest] : 0.0;
+    if (largest > 0.0 && least > 1e-7 * largest) break;
+    Eigen::Index dominant = 0;
+    svd.matrixV().col(weakest).cwiseAbs().maxCoeff(&dominant);
+    held.push_back(free[dominant]);
+    free.erase(free.begin() + dominant);
+  }
+  std::sort(held.begin(), held.end());
+  return held;
+}
+
 OptimumStatistics optimum_statistics(ceres::Problem& problem, double* theta, int n) {
   OptimumStatistics s;
   std::vector<double> residuals;
@@ -29,16 +60,7 @@ OptimumStatistics optimum_statistics(ceres::Problem& problem, double* theta, int
   s.jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
   for (int r = 0; r < crs.num_rows; ++r)
     for (int i = crs.rows[r]; i < crs.rows[r + 1]; ++i) s.jacobian(r, crs.cols[i]) = crs.values[i];
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.jacobian, Eigen::ComputeThinV);
-  const Eigen::VectorXd& sv = svd.singularValues();
-  for (int i = 0; i < sv.size(); ++i) {
-    s.singular_values.push_back(sv[i]);
-    if (sv[i] > 1e-7 * sv[0]) continue;
-    int held = 0;
-    svd.matrixV().col(i).cwiseAbs().maxCoeff(&held);
-    if (std::find(s.unidentifiable.begin(), s.unidentifiable.end(), held) == s.unidentifiable.end())
-      s.unidentifiable.push_back(held);
-  }
+  s.unidentifiable = unidentifiable_columns(s.jacobian, &s.singular_values);
 
   const int m = crs.num_rows;
   if (m <= n) {

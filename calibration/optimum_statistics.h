@@ -25,6 +25,15 @@ struct OptimumStatistics {
   std::vector<std::vector<double>> correlation() const;
 };
 
+// The columns of a Jacobian J (m × n) the data cannot tell (a zero column, or one
+// collinear with others), in increasing order: while the smallest singular value of
+// the columns not yet held is at most 1e-7 of their largest, the dominant entry of
+// its right singular vector is held. An all-zero or empty J tells none; one with a
+// non-finite entry is not decomposed (nothing held).
+// `singular_values`, when given, receives J's, largest first.
+std::vector<int> unidentifiable_columns(const Eigen::MatrixXd& jacobian,
+                                        std::vector<double>* singular_values = nullptr);
+
 // `theta` is the problem's one parameter block, of size n. When the residuals
 // or the Jacobian cannot be evaluated or are not finite (a non-finite target
 // or simulation), the statistics are empty: a 0 × n Jacobian, every parameter

@@ -12,6 +12,7 @@
 #include <ceres/ceres.h>
 #include <Eigen/Sparse>
 
+#include "calibration/fit_stopping.h"
 #include "calibration/optimum_statistics.h"
 #include "calibration/parallel_starts.h"
 #include "calibration/scene_parameters.h"
@@ -222,6 +223,31 @@ std::vector<double> exp_of(const double* theta, int n) {
   return p;
 }
 
+// The residuals r = H_k q(t_k) − y_k over the points seen (zero rows for the
+// others), frame after frame, and their Jacobian in θ = log p, dr/dθ = H_k (∂q/∂p) p.
+Eigen::VectorXd residuals_of(const Simulation& sim, const std::vector<TargetFrame>& frames, const Observation& o) {
+  Eigen::VectorXd r =
+      Eigen::VectorXd::Zero(static_cast<Eigen::Index>(3 * frames.front().points.rows() * frames.size()));
+  Eigen::Index row = 0;
+  for (size_t f = 0; f < frames.size(); ++f)
+    for (Eigen::Index i = 0; i < frames[f].points.rows(); ++i, row += 3)
+      if (o.seen[f][i]) r.segment<3>(row) = sim.y[f].segment<3>(3 * i) - frames[f].points.row(i).transpose();
+  return r;
+}
+
+Eigen::MatrixXd jacobian_of(const Simulation& sim, const std::vector<double>& p, const std::vector<TargetFrame>& frames,
+                            const Observation& o) {
+  const Eigen::Index n = static_cast<Eigen::Index>(p.size());
+  Eigen::MatrixXd j =
+      Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(3 * frames.front().points.rows() * frames.size()), n);
+  const Eigen::VectorXd scale = Eigen::Map<const Eigen::VectorXd>(p.data(), n);
+  Eigen::Index row = 0;
+  for (size_t f = 0; f < frames.size(); ++f)
+    for (Eigen::Index i = 0; i < frames[f].points.rows(); ++i, row += 3)
+      if (o.seen[f][i]) j.middleRows<3>(row) = sim.dy[f].middleRows<3>(3 * i) * scale.asDiagonal();
+  return j;
+}
+
 class TrajectoryCost final : public ceres::CostFunction {
  public:
   TrajectoryCost(Simulator& sim, const std::vector<TargetFrame>& frames, SimulationCache* cache, int n)
@@ -231,23 +257,14 @@ class TrajectoryCost final : public ceres::CostFunction {
   }
 
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
-    const int n = parameter_block_sizes()[0];
+    const int n = parameter_block_sizes()[0], m = num_residuals();
     const std::vector<double> p = exp_of(x[0], n);
     const Simulation& last = cache_->at(sim_, p);
     if (!last.ok) return false;  // Ceres retries with a shorter step
-    const Observation& o = sim_.observation();
-    int row = 0;
-    for (size_t f = 0; f < frames_.size(); ++f) {
-      const Eigen::Index points = frames_[f].points.rows();
-      for (Eigen::Index i = 0; i < points; ++i) {
-        const bool seen = o.seen[f][i];
-        for (int c = 0; c < 3; ++c, ++row) {
-          residuals[row] = seen ? last.y[f][3 * i + c] - frames_[f].points(i, c) : 0.0;
-          if (jacobians && jacobians[0])
-            for (int k = 0; k < n; ++k) jacobians[0][row * n + k] = seen ? last.dy[f](3 * i + c, k) * p[k] : 0.0;
-        }
-      }
-    }
+    Eigen::Map<Eigen::VectorXd>(residuals, m) = residuals_of(last, frames_, sim_.observation());
+    if (jacobians && jacobians[0])
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobians[0], m, n) =
+          jacobian_of(last, p, frames_, sim_.observation());
     return true;
   }
 
@@ -257,17 +274,19 @@ class TrajectoryCost final : public ceres::CostFunction {
   SimulationCache* cache_;
 };
 
-// Per iteration: the cost, the accepted point's simulation kept, progress.
+// Per iteration: the cost, the accepted point's simulation kept, progress, and
+// the flat-cost rule (fit_stopping.h) over the accepted iterations' costs.
 class Progress final : public ceres::IterationCallback {
  public:
   Progress(const Simulator& sim, SimulationCache* cache, const double* theta, int n, int residuals, bool print,
-           std::vector<double>* history)
+           const FlatCostRule& flat, std::vector<double>* history)
       : sim_(sim),
         cache_(cache),
         theta_(theta),
         n_(n),
         residuals_(residuals),
         print_(print),
+        flat_(flat),
         history_(history),
         t0_(Clock::now()) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
@@ -281,8 +300,15 @@ class Progress final : public ceres::IterationCallback {
       std::fprintf(stderr, "  fit iteration %d: cost %.6g (RMS %.4g mm), %d simulations, %.0f s\n", s.iteration, s.cost,
                    1e3 * std::sqrt(2.0 * s.cost / residuals_ * 3.0), sim_.count(),
                    std::chrono::duration<double>(Clock::now() - t0_).count());
+    if (s.iteration > 0 && !s.step_is_successful) return ceres::SOLVER_CONTINUE;
+    accepted_.push_back(s.cost);
+    if (auto why = flat_cost_reason(accepted_, flat_)) {
+      stop_reason_ = *why;
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
     return ceres::SOLVER_CONTINUE;
   }
+  const std::string& stop_reason() const { return stop_reason_; }
 
  private:
   const Simulator& sim_;
@@ -291,12 +317,104 @@ class Progress final : public ceres::IterationCallback {
   int n_;
   int residuals_;
   bool print_;
+  FlatCostRule flat_;
   std::vector<double>* history_;
+  std::vector<double> accepted_;  // the cost at the start and after each accepted step
+  std::string stop_reason_;
   Clock::time_point t0_;
 };
 
 double largest(const std::vector<double>& x) {
   return x.empty() ? std::numeric_limits<double>::quiet_NaN() : *std::max_element(x.begin(), x.end());
+}
+
+// What a stage's start tells before the solver runs (docs/calibration.md §7.1):
+// the free keys the frames do not depend on there (held for the stage), and the
+// residual noise σ (fit_stopping.h) from one more simulation a step of
+// kNoiseProbeStep in θ along the other keys away.
+struct StartProbe {
+  std::vector<int> frozen;  // indices into the free keys
+  double noise = 0.0;       // 0 when the probe does not simulate
+};
+
+constexpr double kNoiseProbeStep = 1e-6;
+
+StartProbe probe_start(Simulator& sim, const Simulation& first, const std::vector<TargetFrame>& frames,
+                       const std::vector<double>& theta, const std::vector<double>& upper, bool hold) {
+  const int n = static_cast<int>(theta.size());
+  const std::vector<double> p0 = exp_of(theta.data(), n);
+  const Eigen::VectorXd r0 = residuals_of(first, frames, sim.observation());
+  const Eigen::MatrixXd j0 = jacobian_of(first, p0, frames, sim.observation());
+  StartProbe probe;
+  if (hold) probe.frozen = unidentifiable_columns(j0);
+  if (static_cast<int>(probe.frozen.size()) == n) return probe;
+  std::vector<double> theta1 = theta;
+  Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < n; ++k) {
+    if (std::find(probe.frozen.begin(), probe.frozen.end(), k) != probe.frozen.end()) continue;
+    theta1[k] += theta[k] + kNoiseProbeStep <= upper[k] ? kNoiseProbeStep : -kNoiseProbeStep;
+    step[k] = theta1[k] - theta[k];
+  }
+  const std::vector<double> p1 = exp_of(theta1.data(), n);
+  const Simulation second = sim.run(p1);
+  if (second.ok)
+    probe.noise = residual_noise(r0, j0, residuals_of(second, frames, sim.observation()),
+                                 jacobian_of(second, p1, frames, sim.observation()), step);
+  return probe;
+}
+
+ceres::Solver::Options solver_options(const TrajectoryFitOptions& opt) {
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = opt.max_iterations;
+  so.function_tolerance = 1e-12;
+  so.gradient_tolerance = 1e-14;
+  so.parameter_tolerance = 1e-10;
+  so.num_threads = 1;
+  so.logging_type = ceres::SILENT;
+  so.update_state_every_iteration = true;  // for Progress; the iterates are the same either way
+  return so;
+}
+
+// Why a stage stopped, in words a user can act on.
+std::string stop_message(const ceres::Solver::Summary& summary, const Progress& progress, int max_iterations,
+                         int frames) {
+  if (summary.termination_type == ceres::USER_SUCCESS) return progress.stop_reason();
+  if (summary.termination_type != ceres::NO_CONVERGENCE) return summary.message;
+  return "stopped at its iteration cap (" + std::to_string(max_iterations) + " iterations over " +
+         std::to_string(frames) +
+         " frames) with the cost still falling: not converged. Raise --max-iterations, fit a growing window "
+         "(--growing-window, shorter first stages), or free fewer keys (--free)";
+}
+
+// The fitted keys' values at θ with their bounds, standard errors and identifiability.
+std::vector<TrajectoryFitParameter> fitted_parameters(const TrajectoryFitOptions& opt, const std::vector<double>& p0,
+                                                      const std::vector<double>& theta,
+                                                      const std::vector<double>& lower,
+                                                      const std::vector<double>& upper, const OptimumStatistics& stats,
+                                                      const std::vector<int>& frozen) {
+  const int n = static_cast<int>(theta.size());
+  const std::vector<double> p = exp_of(theta.data(), n);
+  std::vector<TrajectoryFitParameter> out;
+  for (int k = 0; k < n; ++k) {
+    TrajectoryFitParameter fp;
+    fp.key = opt.free[k];
+    fp.start = p0[k];
+    fp.value = p[k];
+    fp.lower = std::exp(lower[k]);
+    fp.upper = std::exp(upper[k]);
+    const double span = 1e-6 * (upper[k] - lower[k]);
+    fp.at_bound = theta[k] - lower[k] < span || upper[k] - theta[k] < span;
+    const auto held = [k](const std::vector<int>& v) { return std::find(v.begin(), v.end(), k) != v.end(); };
+    fp.identifiable = !held(stats.unidentifiable);
+    fp.frozen = held(frozen);
+    // Delta method: σ_p = p·σ_θ.
+    fp.std_error = stats.covariance.size() && fp.identifiable
+                       ? fp.value * std::sqrt(std::max(0.0, stats.covariance(k, k)))
+                       : std::numeric_limits<double>::quiet_NaN();
+    out.push_back(fp);
+  }
+  return out;
 }
 
 // One plain fit of `frames` from p_start, θ = log p bounded to [lower, upper];
@@ -326,6 +444,7 @@ TrajectoryFitResult fit_frames(const Scene& scene, const std::vector<TargetFrame
     stage.wall_s = result.wall_s = std::chrono::duration<double>(Clock::now() - wall0).count();
     stage.cpu_s = result.cpu_s = double(std::clock() - cpu0) / CLOCKS_PER_SEC;
     stage.converged = result.converged;
+    stage.at_cap = result.at_cap;
     stage.message = result.message;
     stage.iterations = result.iterations;
     result.stages = {stage};
@@ -340,6 +459,16 @@ TrajectoryFitResult fit_frames(const Scene& scene, const std::vector<TargetFrame
   }
   result.start_rms = frame_rms(first, frames, sim.observation());
   result.start_positions = first.y;
+  const StartProbe probe = opt.hold_untold || opt.flat_cost.window > 0
+                               ? probe_start(sim, first, frames, theta, upper, opt.hold_untold)
+                               : StartProbe{};
+  stage.residual_noise = probe.noise;
+  for (int k : probe.frozen) {
+    stage.frozen.push_back(opt.free[k]);
+    if (opt.progress)
+      std::fprintf(stderr, "fit: '%s' held at its start %g: the %zu frames do not depend on it there\n",
+                   opt.free[k].c_str(), p0[k], frames.size());
+  }
 
   ceres::Problem problem;
   auto* cost = new TrajectoryCost(sim, frames, &cache, n);
@@ -348,47 +477,32 @@ TrajectoryFitResult fit_frames(const Scene& scene, const std::vector<TargetFrame
     problem.SetParameterLowerBound(theta.data(), k, lower[k]);
     problem.SetParameterUpperBound(theta.data(), k, upper[k]);
   }
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = opt.max_iterations;
-  so.function_tolerance = 1e-12;
-  so.gradient_tolerance = 1e-14;
-  so.parameter_tolerance = 1e-10;
-  so.num_threads = 1;
-  so.logging_type = ceres::SILENT;
-  Progress progress(sim, &cache, theta.data(), n, cost->num_residuals(), opt.progress, &stage.cost_history);
-  so.callbacks.push_back(&progress);
-  so.update_state_every_iteration = true;  // for Progress; the iterates are the same either way
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
-
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
-  result.message = summary.message;
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  FlatCostRule flat = opt.flat_cost;
+  flat.residual_noise = probe.noise;
+  Progress progress(sim, &cache, theta.data(), n, cost->num_residuals(), opt.progress, flat, &stage.cost_history);
+  if (static_cast<int>(probe.frozen.size()) == n) {
+    result.message = "no fitted key moves the observed points at the start: nothing to fit over these frames";
+  } else {
+    if (!probe.frozen.empty()) problem.SetManifold(theta.data(), new ceres::SubsetManifold(n, probe.frozen));
+    ceres::Solver::Options so = solver_options(opt);
+    so.callbacks.push_back(&progress);
+    ceres::Solver::Summary summary;
+    ceres::Solve(so, &problem, &summary);
+    if (!probe.frozen.empty()) problem.SetManifold(theta.data(), nullptr);  // the statistics see every key
+    result.converged =
+        summary.termination_type == ceres::CONVERGENCE || summary.termination_type == ceres::USER_SUCCESS;
+    result.at_cap = summary.termination_type == ceres::NO_CONVERGENCE;
+    result.message = stop_message(summary, progress, opt.max_iterations, stage.frames);
+    result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  }
   OptimumStatistics stats;
   if (statistics) {
     stats = optimum_statistics(problem, theta.data(), n);
     result.covariance_message = stats.covariance_message;
     if (stats.covariance.size()) result.correlation = stats.correlation();
   }
+  result.parameters = fitted_parameters(opt, p0, theta, lower, upper, stats, probe.frozen);
   const std::vector<double> p = exp_of(theta.data(), n);
-  for (int k = 0; k < n; ++k) {
-    TrajectoryFitParameter fp;
-    fp.key = opt.free[k];
-    fp.start = p0[k];
-    fp.value = p[k];
-    fp.lower = std::exp(lower[k]);
-    fp.upper = std::exp(upper[k]);
-    const double span = 1e-6 * (upper[k] - lower[k]);
-    fp.at_bound = theta[k] - lower[k] < span || upper[k] - theta[k] < span;
-    fp.identifiable =
-        std::find(stats.unidentifiable.begin(), stats.unidentifiable.end(), k) == stats.unidentifiable.end();
-    // Delta method: σ_p = p·σ_θ.
-    fp.std_error = stats.covariance.size() && fp.identifiable
-                       ? fp.value * std::sqrt(std::max(0.0, stats.covariance(k, k)))
-                       : std::numeric_limits<double>::quiet_NaN();
-    result.parameters.push_back(fp);
-  }
   stage.value = p;
   const Simulation& last = cache.at(sim, p);
   if (last.ok) {
@@ -427,7 +541,9 @@ TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetF
   } catch (const std::invalid_argument& e) {
     throw TrajectoryFitError(e.what());
   }
-  if (!(opt.bound_factor > 1.0)) throw TrajectoryFitError("bound factor must be > 1");
+  if (!(opt.bound_factor > 1.0 && std::isfinite(opt.bound_factor)))
+    throw TrajectoryFitError("bound factor: got " + std::to_string(opt.bound_factor) +
+                             ", expected a finite number > 1");
   std::vector<TargetFrame> frames;
   for (const TargetFrame& f : target)
     if (f.time > 0.0) frames.push_back(f);

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "calibration/fit_stopping.h"
 #include "models/core/types.h"
 #include "models/scene/scene.h"
 
@@ -33,6 +34,13 @@ struct TrajectoryFitOptions {
   std::map<std::string, double> start;  // start values; absent keys start at the scene's value
   double bound_factor = 100.0;
   int max_iterations = 50;  // per stage
+  // Each stage also stops when its cost stops improving (fit_stopping.h); the
+  // residual noise is measured at the stage's start, whatever this says.
+  FlatCostRule flat_cost;  // window 0: no flat-cost rule (Ceres's tolerances alone)
+  // Whether a stage holds the free keys its start's Jacobian does not tell
+  // (TrajectoryFitStage::frozen). With this false and no flat-cost rule the start
+  // is not probed: the fit is Ceres's plain Levenberg–Marquardt.
+  bool hold_untold = true;
   // Growing window (frame continuation, docs/calibration.md §7.1): the first
   // window[0] frames are fitted, then the first window[1] from that result, …;
   // increasing, the last equal to the number of frames. Empty: one stage, all frames.
@@ -50,6 +58,11 @@ struct TrajectoryFitStage {
   double wall_s = 0.0, cpu_s = 0.0;
   double start_rms = 0.0, final_rms = 0.0;  // largest per-frame RMS distance to the target [m] (NaN: no simulation)
   std::vector<double> cost_history;         // Ceres cost per iteration (iteration 0 = start)
+  // Free keys held at their start for the stage: at the start the frames do not
+  // depend on them, or only as a combination of the others (optimum_statistics.h).
+  std::vector<std::string> frozen;
+  double residual_noise = 0.0;  // σ measured at the start [m] (fit_stopping.h); 0 when not measured
+  bool at_cap = false;          // stopped at max_iterations with the cost still improving
 };
 
 struct TrajectoryFitParameter {
@@ -59,6 +72,7 @@ struct TrajectoryFitParameter {
   double lower = 0.0, upper = 0.0;
   bool at_bound = false;
   bool identifiable = true;  // false: the trajectory does not tell it (optimum_statistics.h)
+  bool frozen = false;       // held at its start in the last stage (TrajectoryFitStage::frozen)
 };
 
 struct TrajectoryFitResult {
@@ -67,9 +81,10 @@ struct TrajectoryFitResult {
   std::string covariance_message;                // why it is unavailable
   // All from the last stage (values, standard errors, identifiability, convergence),
   // except each parameter's `start` (the first stage's) and the sums over the stages.
-  bool converged = false;
-  std::string message;  // Ceres's termination message
-  int iterations = 0;   // summed over the stages, as the simulations and times
+  bool converged = false;  // the last stage met a tolerance of Ceres or the flat-cost rule
+  bool at_cap = false;     // the last stage stopped at max_iterations
+  std::string message;     // why the last stage stopped (with what to change when at its cap)
+  int iterations = 0;      // summed over the stages, as the simulations and times
   int simulations = 0;
   double wall_s = 0.0, cpu_s = 0.0;
   std::vector<TrajectoryFitStage> stages;             // in order; one without a window

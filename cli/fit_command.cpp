@@ -4,6 +4,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sstream>
 
 #include "cli/commands.h"
 #include "cli/options.h"
@@ -38,7 +39,8 @@ void add_options(CLI::App* fit, FitArgs& a) {
   fit->add_option("--frames", fitc.frames, "Fit the target's first N frames after t = 0 (default all)");
   fit->add_option("--growing-window", a.window,
                   "N1,N2,...: fit the first N1 frames, then the first N2 from that result, ...; increasing, the "
-                  "last equal to --frames (each stage at most --max-iterations)");
+                  "last equal to --frames (each stage at most --max-iterations). Default: a doubling window "
+                  "(5,10,20,...) for more than 10 frames; off: one plain fit");
   fit->add_option("--model", fitc.fit.model, model_help("Model that is fitted"));
   fit->add_option("--integrator", fitc.fit.integrator,
                   "An integrator with parameter sensitivities: be-linear, be-newton or sdirk2 (default the scene's)");
@@ -71,14 +73,23 @@ FitCommandConfig config_of(const CLI::App* fit, const FitArgs& a) {
   fitc.fit.free = split_list(a.free);
   if (fitc.fit.free.empty()) throw std::invalid_argument("--free: empty list");
   for (const std::string& s : a.starts) read_start(s, fitc.fit.start);
-  if (fit->count("--growing-window"))
+  if (a.window == "off") fitc.default_window = false;
+  else if (fit->count("--growing-window"))
     for (double x : split_numbers(a.window, "--growing-window")) {
       if (x != std::floor(x) || x > 1e6)
         throw std::invalid_argument("--growing-window: got '" + a.window +
-                                    "', expected increasing frame counts N1,N2,... (e.g. 5,10,25)");
+                                    "', expected increasing frame counts N1,N2,... (e.g. 5,10,25) or off");
       fitc.fit.window.push_back(static_cast<int>(x));
     }
   if (a.jobs < 1) throw std::invalid_argument("--jobs: got " + std::to_string(a.jobs) + ", expected >= 1");
+  if (fit->count("--frames") && fitc.frames < 1)
+    throw std::invalid_argument("--frames: got " + std::to_string(fitc.frames) +
+                                ", expected a count >= 1 (without --frames, all frames are fitted)");
+  if (!(fitc.fit.bound_factor > 1.0 && std::isfinite(fitc.fit.bound_factor))) {
+    std::ostringstream got;
+    got << fitc.fit.bound_factor;
+    throw std::invalid_argument("--bound-factor: got " + got.str() + ", expected a finite number > 1");
+  }
   if (fit->count("--max-iterations") && fitc.fit.max_iterations < 1)
     throw std::invalid_argument("--max-iterations: got " + std::to_string(fitc.fit.max_iterations) + ", expected >= 1");
   fitc.fit.progress = !a.quiet;
@@ -111,8 +122,27 @@ int run_start_sets(const std::vector<FitCommandConfig>& sets, const FitCommandPl
   return all ? 0 : 1;
 }
 
+// The growing window when the rule chose it (before the fit runs).
+void print_default_window(const FitCommandPlan& plan) {
+  if (plan.window_rule != "default") return;
+  std::string w;
+  for (int f : plan.window) w += (w.empty() ? "" : ",") + std::to_string(f);
+  std::cerr << "weavelab: fit: " << plan.target.size() << " frames, fitted through the growing window " << w
+            << " (the default for a long window; --growing-window off for one plain fit)\n";
+}
+
+// The keys each stage held at their start.
+void print_frozen(const TrajectoryFitResult& r) {
+  for (size_t k = 0; k < r.stages.size(); ++k)
+    for (const std::string& key : r.stages[k].frozen)
+      std::cerr << "weavelab: fit: " << key << " held at its start in stage " << k + 1 << " (" << r.stages[k].frames
+                << " frames): the frames do not depend on it there\n";
+}
+
 int run_one(const FitCommandConfig& fitc, const FitCommandPlan& plan) {
+  print_default_window(plan);
   const TrajectoryFitResult r = run_fit(fitc, plan);
+  print_frozen(r);
   if (r.final_rms.empty()) {
     std::cerr << "weavelab: fit: " << r.message << "\n";
     return 1;
@@ -126,7 +156,11 @@ int run_one(const FitCommandConfig& fitc, const FitCommandPlan& plan) {
             << (r.stages.size() > 1 ? "last stage's " : "") << "start, " << 1e3 * r.final_rms.back()
             << " mm fitted (last frame); " << r.message << "; results in " << fitc.out_dir.string() << "\n";
   for (const auto& p : r.parameters)
-    std::cerr << "  " << p.key << " = " << p.value << " +- " << p.std_error << " (start " << p.start << ")\n";
+    std::cerr << "  " << p.key << " = " << p.value << " +- " << p.std_error << " (start " << p.start << ")"
+              << (p.frozen          ? ", held at its start"
+                  : !p.identifiable ? ", not identifiable"
+                                    : "")
+              << "\n";
   return r.converged ? 0 : 1;
 }
 
@@ -135,6 +169,7 @@ int run(const CLI::App* fit, const FitArgs& a) {
   const std::vector<FitCommandConfig> sets = start_sets_of(fitc, a);
   for (const FitCommandConfig& c : sets) plan_fit(c);  // every input checked; nothing written yet
   const FitCommandPlan plan = plan_fit(fitc);
+  if (!sets.empty()) print_default_window(plan);
   return sets.empty() ? run_one(fitc, plan) : run_start_sets(sets, plan, a.jobs);
 }
 

@@ -207,7 +207,7 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
     by_row.row({std::to_string(j), csv_number(row_count[j] ? std::sqrt(row_sum[j] / row_count[j]) : NAN)});
 
   DiagnoseResult r;
-  r.mean_rms_m = frames > 1 ? sum_rms / double(frames) : NAN;
+  r.mean_rms_m = frames > 0 ? sum_rms / double(frames) : NAN;  // one frame after t = 0 is a valid run
   r.border_rms_m = border_count ? std::sqrt(border_sum / border_count) : NAN;
   r.interior_rms_m = interior_count ? std::sqrt(interior_sum / interior_count) : NAN;
 

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "calibration/fit_continuation.h"
 #include "calibration/scene_parameters.h"
 #include "driver/experiment_meta.h"
+#include "driver/run_settings.h"
 #include "driver/time_error.h"
 #include "driver/time_steps.h"
 #include "models/common/self_contact.h"
@@ -69,10 +71,26 @@ Json fit_error_budget(const FitCommandConfig& c, const FitCommandPlan& p, const 
   return b;
 }
 
-// The configuration with the model the plan chose (the scene's yarn level for an empty one).
+// The configuration with the model and the growing window the plan chose (the
+// scene's yarn level for an empty model, the default window of a long fit).
 FitCommandConfig with_model(FitCommandConfig c, const FitCommandPlan& p) {
   c.fit.model = p.model;
+  c.fit.window = p.window;
   return c;
+}
+
+// The growing window of a fit over `frames` frames and where it comes from.
+void choose_window(const FitCommandConfig& c, int frames, FitCommandPlan& p) {
+  if (!c.fit.window.empty()) {
+    check_window(c.fit.window, frames);
+    p.window = c.fit.window;
+    p.window_rule = "given";
+  } else if (!c.default_window) {
+    p.window_rule = "off";
+  } else {
+    p.window = default_growing_window(frames);
+    p.window_rule = p.window.empty() ? "short" : "default";
+  }
 }
 
 }  // namespace
@@ -92,6 +110,12 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
       throw TrajectoryFitError("--integrator: got '" + c.fit.integrator +
                                "', --time-steps controlled runs sdirk2 (use --time-steps scene for another)");
     p.scene = at_time_steps(p.scene, c.time_steps);
+  }
+  {  // the fitted simulations' steps, as `run` checks them (adaptive steps need error control)
+    Scene stepped = p.scene;
+    std::map<std::string, std::string> record;
+    if (!c.fit.integrator.empty()) stepped.integrator = record["integrator"] = c.fit.integrator;
+    check_run_settings(stepped, record);
   }
   if (!c.fem_params.empty()) {
     p.scene.fem.parameter_file = c.fem_params;
@@ -122,7 +146,7 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
     throw TrajectoryFitError("--frames: got " + std::to_string(c.frames) + ", the target " + c.target_dir.string() +
                              " has " + std::to_string(p.target.size()) + " frames after t = 0");
   for (const auto& [key, value] : c.fit.start) scene_parameter(p.scene, key);  // an unknown key: exit 2
-  if (!c.fit.window.empty()) check_window(c.fit.window, static_cast<int>(p.target.size()));
+  choose_window(c, static_cast<int>(p.target.size()), p);
   return p;
 }
 
@@ -168,6 +192,7 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
     e.set("upper", fp.upper);
     e.set("at_bound", fp.at_bound);
     e.set("identifiable", fp.identifiable);
+    e.set("frozen", fp.frozen);
     params.push(std::move(e));
   }
   j.set("parameters", std::move(params));
@@ -178,7 +203,12 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
                                ? "ceres::Covariance (DENSE_SVD) of log-parameters times the residual variance"
                                : r.covariance_message);
   j.set("converged", r.converged);
+  j.set("stopped_at_iteration_cap", r.at_cap);
   j.set("message", r.message);
+  Json window = Json::array();
+  for (int stage_frames : p.window) window.push(stage_frames);
+  j.set("growing_window", std::move(window));
+  j.set("growing_window_rule", p.window_rule);
   j.set("iterations", r.iterations);
   j.set("simulations", r.simulations);
   j.set("wall_s", r.wall_s);
@@ -190,7 +220,10 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
                     .set("start", Json(st.start))
                     .set("value", Json(st.value))
                     .set("converged", st.converged)
+                    .set("stopped_at_iteration_cap", st.at_cap)
                     .set("message", st.message)
+                    .set("frozen", Json(st.frozen))
+                    .set("residual_noise_m", st.residual_noise)
                     .set("iterations", st.iterations)
                     .set("simulations", st.simulations)
                     .set("wall_s", st.wall_s)

@@ -29,6 +29,10 @@ struct FitCommandConfig {
   // integrator and step, as the published fit; controlled: sdirk2 under error control.
   TimeSteps time_steps{.scene = true};
   TrajectoryFitOptions fit;
+  // With fit.window empty: the default growing window of a long fit
+  // (calibration/fit_continuation.h) when true, one plain stage when false
+  // (`--growing-window off`).
+  bool default_window = true;
 };
 
 // Every input checked before anything runs: throws SceneError, RunReadError,
@@ -36,7 +40,9 @@ struct FitCommandConfig {
 struct FitCommandPlan {
   Scene scene;
   std::vector<TargetFrame> target;
-  std::string model;  // config.fit.model, or the scene's yarn level when that is empty
+  std::string model;        // config.fit.model, or the scene's yarn level when that is empty
+  std::vector<int> window;  // the growing window the fits run (empty: one plain stage)
+  std::string window_rule;  // where it comes from: "given", "default", "off" or "short" (no window needed)
 };
 FitCommandPlan plan_fit(const FitCommandConfig& config);
 

@@ -61,19 +61,28 @@ const Overridable* overridden(const std::string& key, const std::map<std::string
                    expected);
 }
 
-// --adaptive or --rtol asks for error control, which the integrator must declare
-// (IntegratorCapabilities::controls_error); one without it would run fixed steps.
+// Adaptive steps (--adaptive, --rtol or the scene's [time] adaptive = true) ask for
+// error control, which the integrator must declare (IntegratorCapabilities::controls_error);
+// one without it would run fixed steps while the record says adaptive.
 void check_error_control(const Scene& scene, const std::map<std::string, std::string>& record) {
-  if (!scene.adaptive || !record.count("adaptive") || make_integrator(scene.integrator)->capabilities().controls_error)
-    return;
+  if (!scene.adaptive || make_integrator(scene.integrator)->capabilities().controls_error) return;
   std::string controlled;
   for (const auto& n : integrator_names())
     if (make_integrator(n)->capabilities().controls_error) controlled += (controlled.empty() ? "" : ", ") + n;
-  const bool rtol = record.count("rtol") > 0;
-  throw SettingError(rtol ? "--rtol" : "--adaptive", rtol ? record.at("rtol") : "true",
-                     "an integrator with error control: " + scene.integrator +
-                         " has none (it would run fixed steps of dt); choose one of " + controlled +
-                         ", or drop the option");
+  const std::string none = scene.integrator + " has none (it would run fixed steps of dt); choose one of " + controlled;
+  if (record.count("adaptive")) {
+    const bool rtol = record.count("rtol") > 0;
+    throw SettingError(rtol ? "--rtol" : "--adaptive", rtol ? record.at("rtol") : "true",
+                       "an integrator with error control: " + none + ", or drop the option");
+  }
+  if (record.count("integrator"))  // the scene's adaptive = true under the command line's integrator
+    fail(scene, record, "time.integrator", "\"" + scene.integrator + "\"",
+         "an integrator with error control, as the scene's [time] adaptive = true asks: " + none);
+  fail(scene, record, "time.adaptive", "true",
+       "false under " + scene.integrator +
+           ", which has no error control (it would run fixed steps of dt); "
+           "or an integrator with one: " +
+           controlled);
 }
 
 }  // namespace

@@ -72,5 +72,26 @@ TEST(OptimumStatistics, AFailedEvaluationGivesEmptyStatisticsThatSayWhy) {
   EXPECT_NE(s.covariance_message.find("not finite"), std::string::npos) << s.covariance_message;
 }
 
+// A zero column and a column that repeats another are each held; the SVD's
+// singular values come back largest first.
+TEST(OptimumStatistics, ZeroAndCollinearColumnsAreUnidentifiable) {
+  Eigen::MatrixXd j(4, 3);
+  j << 1, 0, 0.5, 0, 1, 0, 1, 1, 0.5, 2, 0, 1;  // column 2 = ½ column 0: the null vector (½, 0, −1)
+  std::vector<double> sv;
+  EXPECT_EQ(unidentifiable_columns(j, &sv), (std::vector<int>{2}));
+  ASSERT_EQ(sv.size(), 3u);
+  EXPECT_GT(sv[0], sv[1]);
+  EXPECT_LT(sv[2], 1e-12 * sv[0]);
+  j.col(2).setZero();
+  j.col(1).setZero();
+  EXPECT_EQ(unidentifiable_columns(j), (std::vector<int>{1, 2}));
+  EXPECT_EQ(unidentifiable_columns(Eigen::MatrixXd::Zero(4, 2)), (std::vector<int>{0, 1}));
+  j.col(1) << 0, 1, 1, 0;
+  j.col(2) << 0, 0, 1e-3, 1;  // small but independent: told
+  EXPECT_TRUE(unidentifiable_columns(j).empty());
+  j(0, 0) = std::numeric_limits<double>::quiet_NaN();  // not decomposed
+  EXPECT_TRUE(unidentifiable_columns(j).empty());
+}
+
 }  // namespace
 }  // namespace wl

@@ -82,6 +82,39 @@ TEST(TrajectoryFit, RecoversYarnParametersFromTheirOwnTrajectory) {
     EXPECT_TRUE(with_mu.parameters[k].identifiable) << with_mu.parameters[k].key;
     EXPECT_TRUE(std::isfinite(with_mu.parameters[k].std_error));
   }
+  // μ's Jacobian column is zero from the start: the fit holds it there instead of
+  // letting it wander, says so, and recovers the others as without it.
+  ASSERT_EQ(with_mu.stages.size(), 1u);
+  EXPECT_EQ(with_mu.stages[0].frozen, std::vector<std::string>{kFrictionCoefficientKey});
+  EXPECT_TRUE(with_mu.parameters.back().frozen);
+  EXPECT_NEAR(with_mu.parameters.back().value, 0.35, 1e-15);  // exp(log p): round-off only
+  for (int k = 0; k < 3; ++k) EXPECT_FALSE(with_mu.parameters[k].frozen) << with_mu.parameters[k].key;
+  TrajectoryFitResult others = with_mu;
+  others.parameters.pop_back();
+  expect_recovered(others, truth, 1e-4);
+}
+
+// A fit that reaches its iteration cap with the cost still falling says so, is
+// not converged, and names what to change.
+TEST(TrajectoryFit, AFitAtItsIterationCapSaysSoAndWhatToChange) {
+  const Scene truth = small_scene();
+  const auto target = record<YarnModel>(truth, yarn_nodes, {0.01});
+  TrajectoryFitOptions opt;
+  opt.free = {kShearModulusKey};
+  opt.start = {{kShearModulusKey, 1400.0}};
+  opt.max_iterations = 1;
+  const TrajectoryFitResult r = fit_trajectory(truth, target, opt);
+  EXPECT_FALSE(r.converged);
+  EXPECT_TRUE(r.at_cap);
+  ASSERT_EQ(r.stages.size(), 1u);
+  EXPECT_TRUE(r.stages[0].at_cap);
+  EXPECT_EQ(r.iterations, 1);
+  for (const char* words : {"iteration cap", "--max-iterations", "--growing-window"})
+    EXPECT_NE(r.message.find(words), std::string::npos) << r.message;
+  // Measured at the start: round-off, far below the signal (a probe step's own change
+  // left unsubtracted would be about h·|J·d|, some 1e-6 of the signal).
+  EXPECT_GT(r.stages[0].residual_noise, 0.0);
+  EXPECT_LT(r.stages[0].residual_noise, 1e-9 * r.start_rms.back());
 }
 
 // A growing window: the first frame fitted, then all three from that result.

@@ -112,6 +112,30 @@ TEST_F(UpFrontChecks, AdaptiveStepsOfAnIntegratorWithoutErrorControlAreExit2) {
   EXPECT_EQ(controlled.exit_code, 0) << controlled.output;
 }
 
+// The same asked by the scene file ([time] adaptive = true under be-linear): refused at
+// the key's line by run and by fit (whose simulations would run fixed steps too).
+TEST_F(UpFrontChecks, SceneAdaptiveStepsWithoutErrorControlAreExit2Located) {
+  const fs::path target = dir_ / "target";
+  ASSERT_EQ(command("run", tiny(), target).exit_code, 0);
+  const fs::path adaptive =
+      write("adaptive.toml", wl::test::hanging_cloth_toml(5, 0.02, "be-linear") + "adaptive = true\n");
+  const std::string fit_options = "--target " + shell_quote(target.string()) + " --free contact.shear_modulus_Pa";
+  for (const auto& [subcommand, options] : {std::pair{"run", ""}, std::pair{"fit", fit_options.c_str()}}) {
+    const Result r = command(subcommand, adaptive, out(), options);
+    EXPECT_EQ(r.exit_code, 2) << subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r, "adaptive.toml:") && has(r, "time.adaptive") && has(r, "be-linear")) << subcommand << "\n"
+                                                                                            << r.output;
+    EXPECT_FALSE(fs::exists(out())) << subcommand;
+  }
+  // fit's own bad values, each named and refused before anything is written.
+  for (const std::string options : {"--frames 0", "--bound-factor 1", "--growing-window 1,1", "--growing-window of"}) {
+    const Result r = command("fit", tiny(), out(), fit_options + " " + options);
+    EXPECT_EQ(r.exit_code, 2) << options << "\n" << r.output;
+    EXPECT_TRUE(has(r, options.substr(0, options.find(' ')) + ": got")) << options << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out())) << options;
+  }
+}
+
 // A cloth that cannot fit in memory: every comparison refuses it at once, as
 // run does, with the estimate, instead of allocating until std::bad_alloc.
 TEST_F(UpFrontChecks, AClothTooLargeForMemoryIsExit2AtOnce) {

@@ -140,6 +140,41 @@ TEST(RunSettings, GoodOverridesAreAppliedAndRecorded) {
   EXPECT_EQ(record.at("integrator"), "ida");
 }
 
+// Adaptive steps set in the scene file under an integrator without error control
+// would run fixed steps while the summary records adaptive: refused at the key's
+// line; with the integrator from the command line, the option is named.
+TEST(RunSettings, SceneAdaptiveUnderAnIntegratorWithoutErrorControlIsRefusedLocated) {
+  const std::string text = kScene + "integrator = \"be-linear\"\nadaptive = true\n";
+  Scene s = parse_scene(text, "s.toml");
+  std::map<std::string, std::string> record;
+  try {
+    apply_run_overrides(s, {}, record);
+    FAIL() << "adaptive be-linear accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file, "s.toml");
+    EXPECT_EQ(e.line, 8);
+    EXPECT_EQ(e.key, "time.adaptive");
+    EXPECT_NE(std::string(e.what()).find("sdirk2"), std::string::npos) << e.what();  // one that has it
+  }
+  const std::string adaptive_only = kScene + "adaptive = true\n";
+  s = parse_scene(adaptive_only, "s.toml");
+  RunOverrides o;
+  o.integrator = "be-newton";
+  record.clear();
+  try {
+    apply_run_overrides(s, o, record);
+    FAIL() << "adaptive be-newton accepted";
+  } catch (const SettingError& e) {
+    EXPECT_NE(std::string(e.what()).find("'--integrator'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("adaptive = true"), std::string::npos) << e.what();
+  }
+  o.integrator = "sdirk2";  // error control: accepted, adaptive
+  s = parse_scene(adaptive_only, "s.toml");
+  record.clear();
+  EXPECT_NO_THROW(apply_run_overrides(s, o, record));
+  EXPECT_TRUE(s.adaptive);
+}
+
 TEST(RunSettings, SceneValuesKeepTheirLocation) {
   // An integrator named in the scene is checked with its file and line.
   const std::string text = kScene + "integrator = \"foo\"\n";
