@@ -187,7 +187,7 @@ TEST(RunSettings, LinearSolverIsCheckedLikeTheOtherSettings) {
   RunOverrides o;
   o.linear_solver = "cholesky";
   const std::string msg = rejection(o);
-  EXPECT_NE(msg.find("option '--linear-solver': got \"cholesky\", expected one of auto, umfpack, cholmod, gmres"),
+  EXPECT_NE(msg.find("option '--linear-solver': got \"cholesky\", expected one of auto, umfpack, cholmod, gmres, amg"),
             std::string::npos)
       << msg;
   Scene s = parse_scene(kScene + "linear_solver = \"lu\"\n", "s.toml");
