@@ -54,9 +54,10 @@ constexpr double kGmresTolerance = 1e-10;
 // SparseSolverOptions::threaded_min_free.
 constexpr int kThreadedMinFree = std::numeric_limits<int>::max();
 // auto: amg (where hypre is built) from this many free DoFs on. The scale study
-// (experiments/scale/RESULTS.md) has the woven cloth's amg step faster than the
-// factor route's from 33×33 (5 189 DoFs) on and slower at 17×17 (1 317); on the
-// knitted stockinette (4 944 DoFs) amg needed more iterations and was slower.
+// (experiments/scale/RESULTS.md) has the woven cloth's amg step slower than the
+// factor route's at 17×17 (1 317 DoFs), about even at 33×33 (5 189) and faster
+// from 65×65 on; on the knitted stockinette (4 944 DoFs) amg needed more
+// iterations and was slower.
 // auto keeps the factor route up to the 65×65 class (20 613 DoFs), where the
 // lab's studies and tests run, and takes amg from the 129×129 class
 // (82 181 DoFs) on, where the factor's fill is what grows.
