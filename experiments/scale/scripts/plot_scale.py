@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """The scale study's figure: median step time (wall, and the process's CPU
-time: the machine may be shared) and peak resident size against the DoFs of the
+time: the machine may be shared) and resident size (the peak, and what is held
+after the steps) against the DoFs of the
 woven cloth, one line per step solver (log-log). Usage: plot_scale.py scale.csv out.png"""
 import csv
 import os
@@ -27,9 +28,12 @@ def main():
         line, = ax_t.loglog(dofs, [float(r["step_ms"]) / 1e3 for r in mine], "o-", label=f"{solver} (wall)")
         ax_t.loglog(dofs, [float(r["step_cpu_ms"]) / 1e3 for r in mine], "s--", color=line.get_color(),
                     label=f"{solver} (CPU)")
-        ax_m.loglog(dofs, [float(r["peak_mb"]) / 1e3 for r in mine], "o-", color=line.get_color(), label=solver)
+        ax_m.loglog(dofs, [float(r["peak_mb"]) / 1e3 for r in mine], "o-", color=line.get_color(),
+                    label=f"{solver} (peak)")
+        ax_m.loglog(dofs, [float(r["rss_end_mb"]) / 1e3 for r in mine], "s--", color=line.get_color(),
+                    label=f"{solver} (held after the steps)")
     ax_t.set(xlabel="DoFs (woven cloth)", ylabel="median be-linear step [s]", title="time per step")
-    ax_m.set(xlabel="DoFs (woven cloth)", ylabel="peak resident size [GB]", title="memory")
+    ax_m.set(xlabel="DoFs (woven cloth)", ylabel="resident size [GB]", title="memory")
     for ax in (ax_t, ax_m):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
