@@ -5,6 +5,8 @@
 // every listed step solver, against UMFPACK and CHOLMOD references.
 //   weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]
 // FEM and yarn steps on one scene (compare_models.cpp).
+//   weavelab_bench --scale SCENE [--model M] [--linear-solver NAME] [--steps N] [--warmup W]
+// Time and memory of one scene's step with one solver (scale_memory.cpp).
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -13,10 +15,12 @@
 #include <vector>
 
 #include "bench/compare_models.h"
+#include "bench/scale_memory.h"
 #include "bench/step_timing.h"
 
 int main(int argc, char** argv) {
   if (argc > 1 && !std::strcmp(argv[1], "--compare-models")) return wl::bench::compare_models_main(argc - 2, argv + 2);
+  if (argc > 1 && !std::strcmp(argv[1], "--scale")) return wl::bench::scale_main(argc - 2, argv + 2);
   std::string model = "yarn", integrator = "be-linear";
   std::vector<std::string> scenes, solvers = {"umfpack", "auto"};
   int steps_override = 0;
@@ -32,7 +36,8 @@ int main(int argc, char** argv) {
       std::printf(
           "usage: weavelab_bench [--model yarn|fem] [--integrator be-linear|be-newton]\n"
           "                      [--linear-solvers umfpack,auto,...] [--steps N] [scene.toml ...]\n"
-          "       weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]\n");
+          "       weavelab_bench --compare-models [SCENE] [--steps N] [--yarn-steps M]\n"
+          "       weavelab_bench --scale SCENE [--model yarn|fem] [--linear-solver NAME] [--steps N] [--warmup W]\n");
       return 0;
     } else scenes.push_back(argv[i]);
   }

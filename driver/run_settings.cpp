@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "driver/memory_estimate.h"
+#include "integrators/amg_preconditioner.h"
 #include "integrators/integrator.h"
 #include "models/fem/fem_material.h"
 
@@ -114,6 +115,10 @@ void check_run_settings(const Scene& scene, const std::map<std::string, std::str
     for (const auto& n : solvers) known += (known.empty() ? "" : ", ") + n;
     fail(scene, record, "time.linear_solver", "\"" + scene.linear_solver + "\"", "one of " + known);
   }
+  if (scene.linear_solver == "amg" && !amg_available())
+    fail(scene, record, "time.linear_solver", "\"amg\"",
+         "auto, umfpack, cholmod or gmres: amg needs hypre and this weavelab was built without it "
+         "(Debian libhypre-dev, then configure again)");
 }
 
 void check_linear_solver(const Scene& scene, const Model& model, const std::map<std::string, std::string>& record) {
@@ -122,7 +127,7 @@ void check_linear_solver(const Scene& scene, const Model& model, const std::map<
   std::string names;
   for (const auto& t : terms) names += (names.empty() ? "" : ", ") + t;
   fail(scene, record, "time.linear_solver", "\"cholmod\"",
-       "auto, umfpack or gmres: cholmod needs a symmetric step matrix and this " + model.name() +
+       "auto, umfpack, gmres or amg: cholmod needs a symmetric step matrix and this " + model.name() +
            " model's is not (terms " + names + ")");
 }
 

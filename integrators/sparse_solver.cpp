@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "integrators/amg_preconditioner.h"
 #include "integrators/gmres.h"
 
 #ifdef _OPENMP
@@ -36,6 +37,11 @@ constexpr int kRefactorIterations = 10;
 constexpr int kMaxReuse = 3;
 constexpr int kGmresRestart = 40;
 constexpr int kGmresMaxIterations = 120;
+// amg: a V-cycle is a weaker preconditioner than a factor; GMRES may take more
+// steps. Rebuild the hierarchy once a solve needs more than this factor times
+// the steps of the first solve after the build (or after kMaxReuse matrices).
+constexpr int kAmgMaxIterations = 400;
+constexpr double kAmgRefreshGrowth = 1.5;
 
 std::string umfpack_status(int status) {
   switch (status) {
@@ -96,6 +102,14 @@ class Cholesky : public Eigen::CholmodDecomposition<Matrix64, Eigen::Lower> {
   ~Cholesky() {
     for (cholmod_dense** d : {&x_, &y_, &e_}) cholmod_l_free_dense(d, &cholmod());
   }
+  // Bytes of the factor L (values and indices; 64-bit indices, cholmod_l).
+  double factor_bytes() const {
+    const cholmod_factor* f = m_cholmodFactor;
+    if (!f) return 0.0;
+    constexpr double word = sizeof(SuiteSparse_long);
+    if (f->is_super) return 8.0 * f->xsize + word * (f->ssize + 3.0 * (f->nsuper + 1) + 2.0 * f->n);
+    return (8.0 + word) * f->nzmax + word * (4.0 * f->n + 2.0);
+  }
   // x = L⁻ᵀL⁻¹ b (permuted as factorized); b and x of the matrix's size.
   void solve_into(Eigen::Ref<const Vec> b, Eigen::Ref<Vec> x) {
     cholmod_dense bd{};
@@ -138,6 +152,7 @@ class RowCopy {
     const double* v = a.valuePtr();
     for (size_t k = 0; k < from_.size(); ++k) values_[k] = v[from_[k]];
   }
+  double bytes() const { return 4.0 * outer_.size() + (4.0 + 8.0 + 8.0) * static_cast<double>(values_.size()); }
   void multiply(Eigen::Ref<const Vec> x, Eigen::Ref<Vec> y) const {
     for (size_t i = 0; i + 1 < outer_.size(); ++i) {
       double s = 0.0;
@@ -154,7 +169,7 @@ class RowCopy {
 
 }  // namespace
 
-std::vector<std::string> linear_solver_names() { return {"auto", "umfpack", "cholmod", "gmres"}; }
+std::vector<std::string> linear_solver_names() { return {"auto", "umfpack", "cholmod", "gmres", "amg"}; }
 
 const char* to_string(LinearSolverMethod m) {
   switch (m) {
@@ -162,13 +177,14 @@ const char* to_string(LinearSolverMethod m) {
     case LinearSolverMethod::umfpack: return "umfpack";
     case LinearSolverMethod::cholmod: return "cholmod";
     case LinearSolverMethod::gmres: return "gmres";
+    case LinearSolverMethod::amg: return "amg";
   }
   return "?";
 }
 
 LinearSolverMethod parse_linear_solver(const std::string& name) {
   for (auto m : {LinearSolverMethod::automatic, LinearSolverMethod::umfpack, LinearSolverMethod::cholmod,
-                 LinearSolverMethod::gmres})
+                 LinearSolverMethod::gmres, LinearSolverMethod::amg})
     if (name == to_string(m)) return m;
   throw std::invalid_argument("unknown linear solver '" + name + "'");
 }
@@ -180,9 +196,11 @@ struct SparseSolver::Impl {
   Matrix64 sym;  // S = (A + Aᵀ)/2 on reduced_'s pattern (gmres)
   std::unique_ptr<Gmres> gmres;
   std::unique_ptr<RowCopy> rows;  // A by rows for GMRES's products, updated by factorize()
-  enum class Precond { none, cholesky, lu } precond = Precond::none;
+  std::unique_ptr<AmgPreconditioner> amg;
+  enum class Precond { none, cholesky, lu, amg } precond = Precond::none;
   bool precond_current = false;  // built from the matrix last given to factorize()
   int reuses = 0, last_iterations = 0;
+  int fresh_iterations = -1;  // amg: Arnoldi steps of the first solve after the build (−1: none yet)
 };
 
 SparseSolver::SparseSolver(const SparseMatrix& pattern, std::span<const int> fixed, Options options)
@@ -191,8 +209,12 @@ SparseSolver::SparseSolver(const SparseMatrix& pattern, std::span<const int> fix
     std::string terms;
     for (const auto& t : options_.asymmetric_terms) terms += (terms.empty() ? "" : ", ") + t;
     throw std::invalid_argument("linear solver 'cholmod' needs a symmetric step matrix; this model's is not (terms: " +
-                                terms + "); use auto, umfpack or gmres");
+                                terms + "); use auto, umfpack, gmres or amg");
   }
+  if (method_ == LinearSolverMethod::amg && !amg_available())
+    throw std::invalid_argument(
+        "linear solver 'amg' needs hypre, and this weavelab was built without it "
+        "(Debian libhypre-dev, then configure again)");
   const Index64 n = pattern.rows();
   std::vector<Index64> reduced_index(n, 0);
   for (int i : fixed) reduced_index[i] = -1;
@@ -261,6 +283,7 @@ void SparseSolver::restart() {
   impl_->precond = Impl::Precond::none;
   impl_->precond_current = false;
   impl_->reuses = impl_->last_iterations = 0;
+  impl_->fresh_iterations = -1;
 }
 
 void SparseSolver::set_refinement_steps(int steps) { impl_->lu.umfpackControl()(UMFPACK_IRSTEP) = steps; }
@@ -274,6 +297,10 @@ std::string SparseSolver::description() const {
              (impl_->precond == Impl::Precond::lu ? "umfpack LU of A" : "cholmod LLT of (A + A^T)/2") +
              ", refreshed after " + std::to_string(kRefactorIterations) + " iterations or " +
              std::to_string(kMaxReuse) + " matrices)";
+    case LinearSolverMethod::amg:
+      return "amg (gmres restart " + std::to_string(kGmresRestart) +
+             ", relative residual 1e-10, preconditioner: BoomerAMG V-cycle of (A + A^T)/2, " +
+             std::to_string(impl_->amg ? impl_->amg->num_kinds() : 1) + " unknown kinds)";
     case LinearSolverMethod::automatic: break;
   }
   return "auto (no matrix yet)";
@@ -281,9 +308,28 @@ std::string SparseSolver::description() const {
 
 void SparseSolver::choose_method() {
   if (method_ != LinearSolverMethod::automatic) return;
-  if (options_.asymmetric_terms.empty()) method_ = LinearSolverMethod::cholmod;
+  const bool nearly_symmetric = options_.asymmetric_terms.empty() || stats_.max_asymmetry < kNearlySymmetric;
+  if (amg_available() && num_free() >= kAmgMinFree && nearly_symmetric) method_ = LinearSolverMethod::amg;
+  else if (options_.asymmetric_terms.empty()) method_ = LinearSolverMethod::cholmod;
   else if (num_free() < kSmallSystem || stats_.max_asymmetry >= kNearlySymmetric) method_ = LinearSolverMethod::umfpack;
   else method_ = LinearSolverMethod::gmres;
+}
+
+SparseSolver::Memory SparseSolver::memory() const {
+  auto sparse_bytes = [](const Matrix64& m) {
+    return (8.0 + 8.0) * static_cast<double>(m.nonZeros()) + 8.0 * (m.outerSize() + 1.0);
+  };
+  Memory mem;
+  mem.matrices = sparse_bytes(reduced_) + sparse_bytes(impl_->sym) + 8.0 * (value_map_.size() + transpose_map_.size()) +
+                 4.0 * free_.size() + (impl_->rows ? impl_->rows->bytes() : 0.0);
+  if (impl_->amg) {
+    const AmgPreconditioner::Statistics& a = impl_->amg->statistics();
+    mem.preconditioner = (8.0 + 4.0) * static_cast<double>(a.hierarchy_nonzeros);
+  } else if (impl_->llt_analyzed) {
+    mem.preconditioner = impl_->llt.factor_bytes();
+  }
+  if (impl_->gmres) mem.krylov = 8.0 * num_free() * (2.0 * kGmresRestart + 3.0);
+  return mem;
 }
 
 bool SparseSolver::factor_lu() const {
@@ -303,13 +349,8 @@ bool SparseSolver::factor_lu() const {
 bool SparseSolver::factor_cholesky(bool symmetric_part) const {
   const Matrix64* a = &reduced_;
   if (symmetric_part) {
-    Matrix64& s = impl_->sym;
-    if (s.nonZeros() != reduced_.nonZeros()) s = reduced_;
-    const double* av = reduced_.valuePtr();
-    double* sv = s.valuePtr();
-    for (size_t k = 0; k < transpose_map_.size(); ++k)
-      sv[k] = 0.5 * (av[k] + (transpose_map_[k] >= 0 ? av[transpose_map_[k]] : 0.0));
-    a = &s;
+    update_symmetric_part();
+    a = &impl_->sym;
   }
   const int threaded_min = options_.threaded_min_free >= 0 ? options_.threaded_min_free : kThreadedMinFree;
   const OneThreadRegions serial(num_free() < threaded_min);
@@ -325,9 +366,26 @@ bool SparseSolver::factor_cholesky(bool symmetric_part) const {
   return false;
 }
 
+void SparseSolver::update_symmetric_part() const {
+  Matrix64& s = impl_->sym;
+  if (s.nonZeros() != reduced_.nonZeros()) s = reduced_;
+  const double* av = reduced_.valuePtr();
+  double* sv = s.valuePtr();
+  for (size_t k = 0; k < transpose_map_.size(); ++k)
+    sv[k] = 0.5 * (av[k] + (transpose_map_[k] >= 0 ? av[transpose_map_[k]] : 0.0));
+}
+
+bool SparseSolver::factor_amg() const {
+  update_symmetric_part();
+  if (!impl_->amg) impl_->amg = std::make_unique<AmgPreconditioner>(dof_kinds_from_pattern(reduced_));
+  impl_->fresh_iterations = -1;
+  return impl_->amg->setup(impl_->sym, failure_);
+}
+
 bool SparseSolver::factor_preconditioner() const {
   using P = Impl::Precond;
-  impl_->precond = factor_cholesky(true) ? P::cholesky : factor_lu() ? P::lu : P::none;
+  if (method_ == LinearSolverMethod::amg) impl_->precond = factor_amg() ? P::amg : P::none;
+  else impl_->precond = factor_cholesky(true) ? P::cholesky : factor_lu() ? P::lu : P::none;
   impl_->precond_current = true;
   impl_->reuses = 0;
   return impl_->precond != P::none;
@@ -362,14 +420,17 @@ bool SparseSolver::factorize(const SparseMatrix& a) {
       if (options_.method != LinearSolverMethod::automatic) return false;
       method_ = LinearSolverMethod::umfpack;
       return factor_lu();
-    case LinearSolverMethod::gmres: {
+    case LinearSolverMethod::gmres:
+    case LinearSolverMethod::amg: {
       if (!impl_->gmres) impl_->gmres = std::make_unique<Gmres>(num_free(), kGmresRestart);
       if (!impl_->rows) impl_->rows = std::make_unique<RowCopy>(reduced_);
       impl_->rows->update(reduced_);
       impl_->precond_current = false;
       ++impl_->reuses;
-      const bool stale = impl_->precond == Impl::Precond::none || impl_->last_iterations > kRefactorIterations ||
-                         impl_->reuses > kMaxReuse;
+      const bool grown = method_ == LinearSolverMethod::amg
+                             ? impl_->last_iterations > kAmgRefreshGrowth * impl_->fresh_iterations
+                             : impl_->last_iterations > kRefactorIterations;
+      const bool stale = impl_->precond == Impl::Precond::none || grown || impl_->reuses > kMaxReuse;
       return !stale || factor_preconditioner();
     }
     case LinearSolverMethod::automatic: break;
@@ -381,13 +442,16 @@ bool SparseSolver::gmres_solve(const Vec& rb, Vec& rx, bool from_x) const {
   auto apply_a = [this](Eigen::Ref<const Vec> in, Eigen::Ref<Vec> out) { impl_->rows->multiply(in, out); };
   auto apply_p = [this](Eigen::Ref<const Vec> in, Eigen::Ref<Vec> out) {
     if (impl_->precond == Impl::Precond::cholesky) impl_->llt.solve_into(in, out);
+    else if (impl_->precond == Impl::Precond::amg) impl_->amg->apply(in, out);
     else out = impl_->lu.solve(in);
   };
+  const int max_iterations = method_ == LinearSolverMethod::amg ? kAmgMaxIterations : kGmresMaxIterations;
   for (int attempt = 0; attempt < 3; ++attempt) {
     if (attempt > 0 || !from_x) rx.setZero();
-    const Gmres::Result r = impl_->gmres->solve(apply_a, apply_p, rb, rx, kGmresTolerance, kGmresMaxIterations);
+    const Gmres::Result r = impl_->gmres->solve(apply_a, apply_p, rb, rx, kGmresTolerance, max_iterations);
     stats_.krylov_iterations += r.iterations;
     impl_->last_iterations = r.iterations;
+    if (impl_->fresh_iterations < 0) impl_->fresh_iterations = r.iterations;
     if (r.converged) return true;
     failure_ = "GMRES reached a relative residual of " + std::to_string(r.relative_residual) + " after " +
                std::to_string(r.iterations) + " iterations";
@@ -410,7 +474,7 @@ bool SparseSolver::solve(const Vec& b, Vec& x, bool from_x) const {
   if (from_x)
     for (size_t i = 0; i < free_.size(); ++i) rx_[i] = x[free_[i]];
   bool ok = true;
-  if (method_ == LinearSolverMethod::gmres) ok = gmres_solve(rb_, rx_, from_x);
+  if (method_ == LinearSolverMethod::gmres || method_ == LinearSolverMethod::amg) ok = gmres_solve(rb_, rx_, from_x);
   else if (method_ == LinearSolverMethod::cholmod) impl_->llt.solve_into(rb_, rx_);
   else rx_ = impl_->lu.solve(rb_);
   ++stats_.solves;

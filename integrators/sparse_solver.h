@@ -11,10 +11,18 @@
 //            Arnoldi steps or kMaxReuse matrices have passed; a solve that does
 //            not converge with a kept factor is retried with a fresh one.
 //            Stops at ‖b − A x‖ ≤ kGmresTolerance ‖b‖.
+//   amg      the same GMRES on A, right-preconditioned by one BoomerAMG V-cycle
+//            of S (integrators/amg_preconditioner.h; hypre, optional at build
+//            time: refused without it). The hierarchy is kept over later
+//            matrices and rebuilt when a solve needed more than
+//            kAmgRefreshGrowth times the Arnoldi steps of the first solve after
+//            it was built, or kMaxReuse matrices have passed. Its memory is
+//            O(nnz of A), where a factor's fill grows faster than the DoFs.
 //   auto     cholmod for a symmetric matrix (umfpack when it is not positive
 //            definite), umfpack below 300 free DoFs, gmres for larger nearly
 //            symmetric ones (measured ‖A − Aᵀ‖_F / ‖A‖_F below kNearlySymmetric),
-//            umfpack otherwise.
+//            umfpack otherwise; from kAmgMinFree free DoFs on, where hypre is
+//            built, amg for a symmetric or nearly symmetric matrix.
 // The symbolic analyses are done once (at the first matrix, on real values).
 // Sparse indices passed to SuiteSparse are 64-bit (umfpack_dl, cholmod_l).
 #pragma once
@@ -29,14 +37,15 @@
 
 namespace wl {
 
-enum class LinearSolverMethod { automatic, umfpack, cholmod, gmres };
-// Names in documentation order: auto, umfpack, cholmod, gmres.
+enum class LinearSolverMethod { automatic, umfpack, cholmod, gmres, amg };
+// Names in documentation order: auto, umfpack, cholmod, gmres, amg (listed
+// whether or not hypre is built; SparseSolver refuses amg without it).
 std::vector<std::string> linear_solver_names();
 const char* to_string(LinearSolverMethod m);
 // Throws std::invalid_argument for an unknown name.
 LinearSolverMethod parse_linear_solver(const std::string& name);
 
-// Relative residual the gmres method reaches (the direct methods reach ~1e-14).
+// Relative residual the gmres and amg methods reach (the direct methods reach ~1e-14).
 constexpr double kGmresTolerance = 1e-10;
 // Free DoFs from which CHOLMOD's supernodal factorization may use OpenMP
 // threads: never by default. Its regions name a team of 4; on the 2-core
@@ -44,6 +53,15 @@ constexpr double kGmresTolerance = 1e-10;
 // DoFs (docs/design.md §11). A machine with more cores may set
 // SparseSolverOptions::threaded_min_free.
 constexpr int kThreadedMinFree = std::numeric_limits<int>::max();
+// auto: amg (where hypre is built) from this many free DoFs on. The scale study
+// (experiments/scale/RESULTS.md) has the woven cloth's amg step slower than the
+// factor route's at 17×17 (1 317 DoFs), about even at 33×33 (5 189) and faster
+// from 65×65 on; on the knitted stockinette (4 944 DoFs) amg needed more
+// iterations and was slower.
+// auto keeps the factor route up to the 65×65 class (20 613 DoFs), where the
+// lab's studies and tests run, and takes amg from the 129×129 class
+// (82 181 DoFs) on, where the factor's fill is what grows.
+constexpr int kAmgMinFree = 50000;
 
 struct SparseSolverOptions {
   LinearSolverMethod method = LinearSolverMethod::umfpack;
@@ -69,7 +87,7 @@ class SparseSolver {
 
   // `pattern` is the full matrix pattern; `fixed` the DoFs to eliminate.
   // Throws std::invalid_argument when `options.method` is cholmod and the
-  // matrix is not declared symmetric.
+  // matrix is not declared symmetric, or amg without hypre.
   SparseSolver(const SparseMatrix& pattern, std::span<const int> fixed, Options options = {});
   ~SparseSolver();
   SparseSolver(const SparseSolver&) = delete;
@@ -103,6 +121,15 @@ class SparseSolver {
   // Method, backend and ordering as recorded in run summaries.
   std::string description() const;
   const Statistics& statistics() const { return stats_; }
+  // Bytes the solver holds now, by what holds them (the scale study's breakdown):
+  // its copies of the matrix (A on the free DoFs, S, A by rows, index maps), the
+  // preconditioner (CHOLMOD's factor L, or the AMG hierarchy counted as its
+  // entries: 8 bytes a value, 4 an index; UMFPACK's LU is not counted) and
+  // GMRES's bases.
+  struct Memory {
+    double matrices = 0.0, preconditioner = 0.0, krylov = 0.0;
+  };
+  Memory memory() const;
   const std::string& failure() const { return failure_; }
 
  private:
@@ -112,6 +139,8 @@ class SparseSolver {
   bool factor_preconditioner() const;
   bool factor_lu() const;
   bool factor_cholesky(bool symmetric_part) const;
+  void update_symmetric_part() const;  // impl_->sym = (A + Aᵀ)/2
+  bool factor_amg() const;
   bool gmres_solve(const Vec& rb, Vec& rx, bool from_x) const;
 
   Options options_;

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libeigen3-dev libsuitesparse-dev libopenblas-dev
-          libtomlplusplus-dev libcli11-dev libspectra-dev libgtest-dev libsundials-dev libceres-dev libcgal-dev
+          libtomlplusplus-dev libcli11-dev libspectra-dev libgtest-dev libsundials-dev libceres-dev libcgal-dev libhypre-dev libopenmpi-dev
           python3 python3-numpy python3-meshio python3-matplotlib
           python3-dev pybind11-dev snakemake)
 missing=()

@@ -5,6 +5,7 @@
 
 #include "driver/memory_estimate.h"
 #include "driver/run_settings.h"
+#include "integrators/amg_preconditioner.h"
 
 namespace wl {
 namespace {
@@ -218,11 +219,22 @@ TEST(RunSettings, ExperimentOptions) {
 namespace wl {
 namespace {
 
+// amg is a known name either way; without hypre the run refuses it up front
+// (exit 2 through SceneError), naming the option and what to install.
+TEST(RunSettings, AmgWithoutHypreIsRefusedUpFront) {
+  if (amg_available()) GTEST_SKIP() << "weavelab built with hypre: amg is accepted";
+  RunOverrides o;
+  o.linear_solver = "amg";
+  const std::string msg = rejection(o);
+  EXPECT_NE(msg.find("option '--linear-solver': got \"amg\""), std::string::npos) << msg;
+  EXPECT_NE(msg.find("libhypre-dev"), std::string::npos) << msg;
+}
+
 TEST(RunSettings, LinearSolverIsCheckedLikeTheOtherSettings) {
   RunOverrides o;
   o.linear_solver = "cholesky";
   const std::string msg = rejection(o);
-  EXPECT_NE(msg.find("option '--linear-solver': got \"cholesky\", expected one of auto, umfpack, cholmod, gmres"),
+  EXPECT_NE(msg.find("option '--linear-solver': got \"cholesky\", expected one of auto, umfpack, cholmod, gmres, amg"),
             std::string::npos)
       << msg;
   Scene s = parse_scene(kScene + "linear_solver = \"lu\"\n", "s.toml");

@@ -1,11 +1,15 @@
 // The step matrix solvers (integrators/sparse_solver.h) against UMFPACK's LU
 // on the step matrices of the shipped 17×17 hanging cloth (yarn and FEM), on
 // a strongly non-symmetric variant, over consecutive steps (gmres keeping its
-// preconditioner), and as whole be-linear trajectories.
+// preconditioner), and as whole be-linear trajectories; the amg route
+// (hypre's BoomerAMG, optional at build time: those tests skip, saying so,
+// where it is not built).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "integrators/amg_preconditioner.h"
 #include "integrators/backward_euler.h"
 #include "integrators/sparse_solver.h"
 #include "models/model_factory.h"
@@ -200,6 +204,87 @@ TEST(SparseSolver, CholeskyOfAnIndefiniteMatrixReportsItWithoutPrinting) {
   EXPECT_NE(s.failure().find("not positive definite"), std::string::npos) << s.failure();
   EXPECT_EQ(out, "");
   EXPECT_EQ(err, "");
+}
+
+constexpr const char* kNoHypre = "weavelab built without hypre (Debian libhypre-dev): the amg route is not built";
+
+TEST(SparseSolver, AmgSolvesTheYarnAndFemStepMatricesLikeUmfpack) {
+  if (!amg_available()) GTEST_SKIP() << kNoHypre;
+  Scene scene = hanging_cloth();
+  StepMatrices yarn(scene, "yarn", 3);
+  EXPECT_LE(distance_to_umfpack(*yarn.model, yarn.a.back(), LinearSolverMethod::amg, kGmresTolerance), 1e-8);
+  StepMatrices fem(scene, "fem", 3);
+  EXPECT_LE(distance_to_umfpack(*fem.model, fem.a.back(), LinearSolverMethod::amg, kGmresTolerance), 1e-8);
+  SparseSolver s(yarn.model->pattern(), yarn.model->fixed_dofs(),
+                 {LinearSolverMethod::amg, yarn.model->asymmetric_terms()});
+  ASSERT_TRUE(s.factorize(yarn.a.back())) << s.failure();
+  Vec x;
+  ASSERT_TRUE(s.solve(random_rhs(yarn.model->num_dofs(), 4), x)) << s.failure();
+  EXPECT_EQ(s.method(), LinearSolverMethod::amg);
+  EXPECT_EQ(s.statistics().factorizations, 0);  // no factor: the hierarchy only
+  EXPECT_GT(s.statistics().krylov_iterations, 1);
+  EXPECT_NE(s.description().find("BoomerAMG"), std::string::npos) << s.description();
+}
+
+// The be-linear step with amg is the direct solver's to the Krylov tolerance:
+// positions within 1e-9 m of UMFPACK's after 30 steps, as gmres above.
+TEST(SparseSolver, AmgTrajectoryAgreesWithUmfpack) {
+  if (!amg_available()) GTEST_SKIP() << kNoHypre;
+  const Vec ref = trajectory(LinearSolverMethod::umfpack);
+  const Vec amg = trajectory(LinearSolverMethod::amg);
+  EXPECT_LE((amg - ref).lpNorm<Eigen::Infinity>(), 1e-9);
+  EXPECT_GT((amg - ref).lpNorm<Eigen::Infinity>(), 0.0);
+}
+
+// The unknown kinds read from the 17×17 yarn cloth's pattern are its DoF
+// layout (docs/models.md §2.1): 289 nodes' x, y, z and the 2·15·15 sliding
+// coordinates of the interior nodes.
+TEST(SparseSolver, AmgUnknownKindsOfTheYarnPatternAreItsDofLayout) {
+  auto model = make_model(hanging_cloth(), "yarn");
+  const Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t> pattern = model->pattern();
+  const std::vector<int> kinds = dof_kinds_from_pattern(pattern);
+  ASSERT_EQ(kinds.size(), size_t(1317));
+  for (int kind : {0, 1, 2}) EXPECT_EQ(std::count(kinds.begin(), kinds.end(), kind), 289) << kind;
+  EXPECT_EQ(std::count(kinds.begin(), kinds.end(), 3), 2 * 15 * 15);
+}
+
+// auto: amg from kAmgMinFree free DoFs on where hypre is built (else the
+// symmetric matrix keeps cholmod), cholmod just below. A shifted 1D Laplacian.
+SparseMatrix shifted_laplacian(int n) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 3.0);
+    if (i > 0) t.emplace_back(i, i - 1, -1.0);
+    if (i + 1 < n) t.emplace_back(i, i + 1, -1.0);
+  }
+  SparseMatrix a(n, n);
+  a.setFromTriplets(t.begin(), t.end());
+  return a;
+}
+
+TEST(SparseSolver, AutoPicksAmgFromItsSizeOn) {
+  for (int n : {kAmgMinFree - 1, kAmgMinFree}) {
+    const SparseMatrix a = shifted_laplacian(n);
+    SparseSolver s(a, {}, {LinearSolverMethod::automatic, {}});
+    ASSERT_TRUE(s.factorize(a)) << s.failure();
+    const bool large = n >= kAmgMinFree;
+    EXPECT_EQ(s.method(), large && amg_available() ? LinearSolverMethod::amg : LinearSolverMethod::cholmod) << n;
+    Vec x;
+    const Vec b = Vec::Ones(n);
+    ASSERT_TRUE(s.solve(b, x)) << s.failure();
+    EXPECT_LE((b - a * x).norm() / b.norm(), large ? kGmresTolerance : 1e-14) << n;
+  }
+}
+
+TEST(SparseSolver, AmgWithoutHypreIsRefused) {
+  if (amg_available()) GTEST_SKIP() << "weavelab built with hypre: amg is available";
+  const SparseMatrix a = shifted_laplacian(10);
+  try {
+    SparseSolver s(a, {}, {LinearSolverMethod::amg, {}});
+    FAIL() << "amg accepted without hypre";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("libhypre-dev"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
