@@ -78,6 +78,11 @@ AccuracyChoice search_accuracy(double target_m, const std::function<TrialRun(dou
       c.reached = step.verdict == SearchVerdict::reached;
       c.verdict = to_string(step.verdict);
       c.note = step.reason;
+      if (progress && c.reached)
+        std::fprintf(stderr,
+                     "weavelab: time error target met: the run, sdirk2 at rtol %.3g, has its time error bounded "
+                     "by %.3g m, its distance to the trial before (target %.3g m); the trials took %.1f s CPU\n",
+                     rtol, step.bound_m, target_m, c.trials_cpu_s());
       return c;
     }
     if (progress) std::fprintf(stderr, "weavelab: next: rtol %.3g: %s\n", step.next_rtol, step.reason.c_str());

@@ -126,7 +126,8 @@ SearchStep next_tolerance(const std::vector<ToleranceTrial>& trials, double targ
     step.reason = "the last trial is predicted to meet the target (" + how + "): " + step.reason;
     return step;
   }
-  step.next_rtol = std::clamp(predicted, last.rtol / limits.max_tighten, last.rtol / limits.companion_ratio);
+  const double tighten = std::isfinite(fit.slope) ? limits.max_tighten : limits.max_tighten_assumed;
+  step.next_rtol = std::clamp(predicted, last.rtol / tighten, last.rtol / limits.companion_ratio);
   step.next_rtol = std::max(step.next_rtol, limits.min_rtol);
   step.reason = "rtol " + number(predicted) + " predicted for " + number(limits.safety) + " × the target (" + how + ")";
   return step;

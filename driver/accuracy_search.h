@@ -39,14 +39,15 @@ PowerLaw fit_power_law(const std::vector<ToleranceTrial>& trials);
 
 struct SearchLimits {
   double first_rtol = 1e-3;
-  double companion_ratio = 10.0;  // a trial's error is measured by one at least this many times tighter
-  double safety = 0.7;            // aims at safety × target
-  double assumed_slope = 0.5;     // before two measured trials: error proportional to √rtol
-  double min_slope = 0.1;         // below it the relation is too flat to predict from
-  int floor_trials = 3;           // a floor: this many last measured trials ...
-  double floor_span = 10.0;       // ... spanning at least this tolerance factor ...
-  double floor_slope = 0.1;       // ... fitted with a slope below this
-  double max_tighten = 1e3;       // one trial tightens the tolerance by at most this factor
+  double companion_ratio = 10.0;     // a trial's error is measured by one at least this many times tighter
+  double safety = 0.7;               // aims at safety × target
+  double assumed_slope = 0.5;        // before two measured trials: error proportional to √rtol
+  double min_slope = 0.1;            // below it the relation is too flat to predict from
+  int floor_trials = 3;              // a floor: this many last measured trials ...
+  double floor_span = 10.0;          // ... spanning at least this tolerance factor ...
+  double floor_slope = 0.1;          // ... fitted with a slope below this
+  double max_tighten = 1e3;          // one trial tightens the tolerance by at most this factor ...
+  double max_tighten_assumed = 1e2;  // ... and by at most this one on an assumed slope
   double min_rtol = kMinRtol;
   int max_trials = 6;
 };

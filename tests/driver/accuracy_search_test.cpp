@@ -108,8 +108,9 @@ TEST(AccuracySearch, TheTrialBudgetBoundsTheSearch) {
   limits.max_trials = 3;
   const Searched s = search([](double r) { return r; }, 1e-9, limits);
   EXPECT_EQ(s.last.verdict, SearchVerdict::budget);
-  EXPECT_EQ(s.trials.size(), 3u);
+  ASSERT_EQ(s.trials.size(), 3u);
   EXPECT_NE(s.last.reason.find("budget of 3 trials"), std::string::npos) << s.last.reason;
+  EXPECT_DOUBLE_EQ(s.trials[2].rtol, 1e-6) << "a step on the assumed slope tightens by at most 100";
 }
 
 TEST(AccuracySearch, TheToleranceFloorBoundsTheSearch) {
