@@ -126,6 +126,10 @@ SearchStep next_tolerance(const std::vector<ToleranceTrial>& trials, double targ
     step.reason = "the last trial is predicted to meet the target (" + how + "): " + step.reason;
     return step;
   }
+  if (std::isfinite(fit.slope) && predicted < limits.min_rtol)
+    return {SearchVerdict::tolerance_floor, 0.0, bound, step.slope,
+            "the measured relation (" + how + ") puts the target at rtol " + number(predicted) +
+                ", below the tolerance floor rtol " + number(limits.min_rtol) + " (" + state + ")"};
   const double tighten = std::isfinite(fit.slope) ? limits.max_tighten : limits.max_tighten_assumed;
   step.next_rtol = std::clamp(predicted, last.rtol / tighten, last.rtol / limits.companion_ratio);
   step.next_rtol = std::max(step.next_rtol, limits.min_rtol);

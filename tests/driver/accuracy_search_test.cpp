@@ -113,12 +113,22 @@ TEST(AccuracySearch, TheTrialBudgetBoundsTheSearch) {
   EXPECT_DOUBLE_EQ(s.trials[2].rtol, 1e-6) << "a step on the assumed slope tightens by at most 100";
 }
 
-TEST(AccuracySearch, TheToleranceFloorBoundsTheSearch) {
+// A target the measured relation puts below the tolerance floor ends the
+// search without running there (before, --accuracy 1e-15 tightened for ever).
+TEST(AccuracySearch, ATargetBelowTheToleranceFloorStopsTheSearch) {
   const Searched s = search([](double r) { return r; }, 1e-20);
   EXPECT_EQ(s.last.verdict, SearchVerdict::tolerance_floor) << s.last.reason;
-  EXPECT_DOUBLE_EQ(s.trials.back().rtol, kMinRtol);
-  EXPECT_LE(s.trials.size(), 6u);
-  for (const ToleranceTrial& t : s.trials) EXPECT_GE(t.rtol, kMinRtol);
+  EXPECT_EQ(s.trials.size(), 3u) << "two measured trials give the relation";
+  EXPECT_NE(s.last.reason.find("below the tolerance floor rtol 1e-12"), std::string::npos) << s.last.reason;
+}
+
+TEST(AccuracySearch, TheToleranceFloorBoundsTheSearch) {
+  SearchLimits limits;
+  limits.min_rtol = 1e-5;
+  const Searched s = search([](double r) { return r; }, 2e-5, limits);
+  EXPECT_EQ(s.last.verdict, SearchVerdict::tolerance_floor) << s.last.reason;
+  EXPECT_DOUBLE_EQ(s.trials.back().rtol, 1e-5);
+  for (const ToleranceTrial& t : s.trials) EXPECT_GE(t.rtol, 1e-5);
 }
 
 TEST(AccuracySearch, AFailedTrialIsFollowedByATighterOne) {
