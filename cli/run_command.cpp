@@ -70,10 +70,12 @@ int exit_code_of_run(const RunReport& rep, const std::filesystem::path& out_dir)
     return rep.result.outcome == Outcome::not_offered ? 2 : 1;
   }
   if (rep.accuracy && !rep.accuracy->reached) {
-    std::cerr << "weavelab: the time error target " << rep.accuracy->target_m << " m was not reached in "
-              << rep.accuracy->trials.size() << " trials"
-              << (rep.accuracy->note.empty() ? "" : ": " + rep.accuracy->note)
-              << "; the run used the last one (summary in " << out_dir.string() << ")\n";
+    const AccuracyChoice& a = *rep.accuracy;
+    std::cerr << "weavelab: the time error target " << a.target_m << " m was not reached in " << a.trials.size()
+              << " trials (" << a.verdict << "): " << a.note << "; the folder holds the last trial, sdirk2 at rtol "
+              << a.rtol;
+    if (a.estimate.ok()) std::cerr << ", estimated " << a.estimate.mean_rms << " m";
+    std::cerr << " (summary in " << out_dir.string() << ")\n";
     return 1;
   }
   return 0;

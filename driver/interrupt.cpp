@@ -36,6 +36,10 @@ std::string interrupted_message(int signal) {
 
 int interrupted_exit_code(int signal) { return 128 + signal; }
 
+void throw_if_interrupted() {
+  if (g_signal) throw Interrupted{};
+}
+
 InterruptScope::InterruptScope() {
   g_signal = 0;
   const struct sigaction sa = recording_action();

@@ -19,6 +19,13 @@ std::string interrupted_message(int signal);
 // Conventional exit status of a process ended by `signal`: 128 + signal.
 int interrupted_exit_code(int signal);
 
+// Thrown from a step callback to end a run after the step a signal arrived in
+// (integrators let an exception from on_step pass; the caller catches it and
+// records outcome `interrupted`).
+struct Interrupted {};
+// Throws Interrupted when a signal was recorded.
+void throw_if_interrupted();
+
 // For a run inside a host process that has its own handlers (the Python
 // module): install_interrupt_handlers() for the object's lifetime, with the
 // recorded signal cleared first; the host's SIGINT and SIGTERM handlers come

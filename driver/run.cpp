@@ -4,8 +4,10 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -58,9 +60,6 @@ bool written_by_a_run(const std::filesystem::path& rel) {
          base == "self_intersections.csv" || base == "self_intersections.csv.part" || base == "summary.json";
 }
 
-// Thrown from the step callback to end the run after the step a signal arrived in.
-struct Interrupted {};
-
 StepResult interrupted_result() { return {Outcome::interrupted, interrupted_message(interrupt_signal())}; }
 
 // The force at (q, 0): an equilibrium has none on a free DoF (the velocity
@@ -77,23 +76,6 @@ SettledBalance settled_balance(const Scene& scene, Model& model, double t, const
   b.heaviest_weight_N = Vec(ev.mass.diagonal()).maxCoeff() * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
   b.kinetic_J = 0.5 * v.dot(ev.mass * v);
   return b;
-}
-
-// With time.accuracy_m set: the integrator and tolerance chosen for it (trial runs in memory),
-// set into `scene`; nothing otherwise.
-std::optional<AccuracyChoice> choose_time_steps(Scene& scene, const std::string& model_name, bool progress) {
-  if (!(scene.accuracy_m > 0.0)) return std::nullopt;
-  (void)make_model(scene, model_name);  // a model the scene cannot build fails before the trials
-  if (progress)
-    std::fprintf(stderr, "weavelab: choosing the integrator and tolerance for a time error of %g m\n",
-                 scene.accuracy_m);
-  AccuracyChoice accuracy = choose_for_accuracy(scene, model_name, scene.accuracy_m, progress);
-  scene.integrator = accuracy.integrator;
-  scene.adaptive = true;
-  scene.rtol = accuracy.rtol;
-  scene.atol = accuracy.atol;
-  scene.error_estimate = false;  // the chosen trial's estimate is this run's (the same steps)
-  return accuracy;
 }
 
 IntegratorOptions run_integrator_options(const Scene& scene) {
@@ -169,26 +151,27 @@ void step_to_duration(const Scene& scene, Model& model, Integrator& integrator,
   }
 }
 
-// Scene key time.error_estimate: the time error of a run that ended ok, from a second run.
+// Scene key time.error_estimate: the time error of a run that ended ok, from a
+// second run. A signal during the second run ends it, and the run with it.
 void estimate_run_time_error(const Scene& scene, const RunOptions& options, const IntegratorOptions& iopt,
                              RecordedRun& record, RunReport& rep) {
-  if (scene.error_estimate && rep.result.outcome == Outcome::ok) {
-    if (options.progress) std::fprintf(stderr, "weavelab: estimating the time error (a second run)\n");
-    record.stats = rep.stats;
-    try {
-      rep.time_error = estimate_time_error(scene, options.model, scene.integrator, iopt, record, options.progress);
-    } catch (const Interrupted&) {
-      rep.result = interrupted_result();
-    }
+  if (!scene.error_estimate || rep.result.outcome != Outcome::ok) return;
+  if (options.progress) std::fprintf(stderr, "weavelab: estimating the time error (a second run)\n");
+  record.stats = rep.stats;
+  std::function<void(double)> observe;
+  if (options.on_step) observe = [&](double t) { options.on_step("time error", t); };
+  rep.time_error = estimate_time_error(scene, options.model, scene.integrator, iopt, record, options.progress, observe);
+  if (rep.time_error->second_run.outcome == Outcome::interrupted) {
+    rep.result = rep.time_error->second_run;
+    return;
   }
-  if (rep.time_error && options.progress) {
-    if (rep.time_error->ok())
-      std::fprintf(stderr, "weavelab: time error (%s): mean RMS %.3g m, max %.3g m\n", rep.time_error->method.c_str(),
-                   rep.time_error->mean_rms, rep.time_error->max_max);
-    else
-      std::fprintf(stderr, "weavelab: no time error estimate: the second run ended %s: %s\n",
-                   to_string(rep.time_error->second_run.outcome), rep.time_error->second_run.message.c_str());
-  }
+  if (!options.progress) return;
+  if (rep.time_error->ok())
+    std::fprintf(stderr, "weavelab: time error (%s): mean RMS %.3g m, max %.3g m\n", rep.time_error->method.c_str(),
+                 rep.time_error->mean_rms, rep.time_error->max_max);
+  else
+    std::fprintf(stderr, "weavelab: no time error estimate: the second run ended %s: %s\n",
+                 to_string(rep.time_error->second_run.outcome), rep.time_error->second_run.message.c_str());
 }
 
 void print_measures(const RunReport& rep) {
@@ -199,28 +182,41 @@ void print_measures(const RunReport& rep) {
   else std::fprintf(stderr, "weavelab: drape not measured: the last frame's shadow is too large to rasterize\n");
 }
 
-}  // namespace
+// One run as written: its model and integrator (for the summary), its open
+// files (the folder stays locked until the summary is written), its report,
+// and what an estimate needs (step ends and node positions at the frames).
+struct WrittenRun {
+  std::unique_ptr<Model> model;
+  std::unique_ptr<Integrator> integrator;
+  std::unique_ptr<RunFiles> files;
+  RunReport rep;
+  RecordedRun record;
+  std::vector<Frame> held_frames;  // the frames options.on_frame gets later (--accuracy trials)
+};
 
-RunReport run_scene(const Scene& scene_in, const RunOptions& options_in) {
-  RunOptions options = options_in;
-  if (options.model.empty()) options.model = yarn_level_model(scene_in);
-  check_run_memory(scene_in, options.model);
-  Scene scene = scene_in;
-  std::optional<AccuracyChoice> accuracy = choose_time_steps(scene, options.model, options.progress);
-  auto model = make_model(scene, options.model);
-  check_linear_solver(scene, *model, options.overrides);
-  auto integrator = make_integrator(scene.integrator);
+// Runs `scene` into options.out_dir: frames and metrics.csv; the report, not the
+// summary. `phase` names it for options.on_step. `keep` fills w.record;
+// `hold_frames` keeps the frames in w.held_frames instead of calling options.on_frame.
+void written_run(const Scene& scene, const RunOptions& options, const std::string& phase, bool keep, bool hold_frames,
+                 WrittenRun& w) {
+  const std::clock_t cpu_start = std::clock();
+  w.model = make_model(scene, options.model);
+  Model& model = *w.model;
+  check_linear_solver(scene, model, options.overrides);
+  w.integrator = make_integrator(scene.integrator);
+  Integrator& integrator = *w.integrator;
   const IntegratorOptions iopt = run_integrator_options(scene);
-  RunFiles files(options.out_dir, *model);
+  w.files = std::make_unique<RunFiles>(options.out_dir, model);
+  RunFiles& files = *w.files;
   if (options.progress)
-    std::fprintf(stderr, "weavelab: %s model, %d DoFs, %s, dt = %g s, %g s simulated -> %s\n", model->name().c_str(),
-                 model->num_dofs(), scene.integrator.c_str(), scene.dt_s, scene.duration_s,
+    std::fprintf(stderr, "weavelab: %s model, %d DoFs, %s, dt = %g s, %g s simulated -> %s\n", model.name().c_str(),
+                 model.num_dofs(), scene.integrator.c_str(), scene.dt_s, scene.duration_s,
                  options.out_dir.string().c_str());
 
   Progress progress(options.progress, scene.duration_s);
-  RecordedRun record;  // what the time error estimate needs: step ends and node positions at the frames
+  RecordedRun& record = w.record;
   auto keep_frame = [&](const Frame& f) {
-    if (!scene.error_estimate || f.time == 0.0) return;
+    if (!keep || f.time == 0.0) return;
     const Eigen::Index rows = static_cast<Eigen::Index>(f.points.size());
     record.trajectory.positions.conservativeResize(rows, record.trajectory.positions.cols() + 1);
     record.trajectory.positions.col(record.trajectory.positions.cols() - 1) =
@@ -231,47 +227,104 @@ RunReport run_scene(const Scene& scene_in, const RunOptions& options_in) {
   auto add_frame = [&](Frame f) {
     keep_frame(f);
     if (files.series) files.series->add(f);
-    if (options.on_frame) options.on_frame(f);
-    if (files.obstacle_series) files.obstacle_series->add(model->obstacle_frame(f.time));
+    if (hold_frames) w.held_frames.push_back(f);
+    else if (options.on_frame) options.on_frame(f);
+    if (files.obstacle_series) files.obstacle_series->add(model.obstacle_frame(f.time));
     if (files.intersections) files.intersections->row({f.time, double(count_self_intersections(f))});
     last_frame = std::move(f);
   };
-  integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), iopt);
+  integrator.initialize(model, 0.0, model.initial_q(), model.initial_v(), iopt);
   Evaluation scratch;
   auto metrics_row = [&](double t, int iters, double wall) {
     if (!files.metrics) return;
-    const Vec& q = integrator->q();
-    const Vec& v = integrator->v();
-    files.metrics->row({t, model->kinetic_energy(t, q, v, scratch), model->potential_energy(q),
-                        max_node_speed(*model, v), double(iters), wall});
+    const Vec& q = integrator.q();
+    const Vec& v = integrator.v();
+    files.metrics->row({t, model.kinetic_energy(t, q, v, scratch), model.potential_energy(q), max_node_speed(model, v),
+                        double(iters), wall});
   };
-  integrator->on_step = [&](const StepRecord& r) {
+  integrator.on_step = [&](const StepRecord& r) {
     metrics_row(r.t, r.nonlinear_iters, r.wall_s);
-    if (scene.error_estimate) record.step_ends.push_back(r.t);
-    progress.update(r.t, integrator->stats().steps);
-    if (interrupt_signal()) throw Interrupted{};
+    if (keep) record.step_ends.push_back(r.t);
+    progress.update(r.t, integrator.stats().steps);
+    if (options.on_step) options.on_step(phase, r.t);
+    throw_if_interrupted();
   };
 
-  RunReport rep;
+  RunReport& rep = w.rep;
   metrics_row(0.0, 0, 0.0);
-  add_frame(model->frame(0.0, integrator->q(), integrator->v()));
+  add_frame(model.frame(0.0, integrator.q(), integrator.v()));
   rep.frames = 1;
-  step_to_duration(scene, *model, *integrator, add_frame, rep);
-  progress.update(integrator->t(), integrator->stats().steps, true);
+  step_to_duration(scene, model, integrator, add_frame, rep);
+  progress.update(integrator.t(), integrator.stats().steps, true);
   if (files.metrics) files.metrics->commit();
   if (files.intersections) files.intersections->commit();
-  rep.stats = integrator->stats();
-  rep.end_time = integrator->t();
+  rep.stats = integrator.stats();
+  rep.end_time = integrator.t();
   if (scene.settle_dt_s > 0.0 && rep.result.outcome == Outcome::ok)
-    rep.settled = settled_balance(scene, *model, integrator->t(), integrator->q(), integrator->v());
+    rep.settled = settled_balance(scene, model, integrator.t(), integrator.q(), integrator.v());
   if (scene.measures.drape) rep.drape = measure_drape(last_frame, drape_geometry(scene));
   if (options.progress) print_measures(rep);
-  rep.accuracy = std::move(accuracy);
-  if (rep.accuracy) rep.time_error = rep.accuracy->estimate;
-  estimate_run_time_error(scene, options, iopt, record, rep);
-  rep.summary_json = run_summary_json(scene, options, *model, *integrator, rep);
-  if (!options.out_dir.empty()) write_file_atomically(options.out_dir / "summary.json", rep.summary_json);
-  return rep;
+  record.result = rep.result;
+  record.stats = rep.stats;
+  record.end_time = rep.end_time;
+  record.cpu_s = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+}
+
+void write_summary(const Scene& scene, const RunOptions& options, WrittenRun& w) {
+  w.rep.summary_json = run_summary_json(scene, options, *w.model, *w.integrator, w.rep);
+  if (!options.out_dir.empty()) write_file_atomically(options.out_dir / "summary.json", w.rep.summary_json);
+}
+
+// The scene of one --accuracy trial: sdirk2 under error control at `rtol` (atol = 1e-3 rtol m).
+Scene trial_scene(const Scene& scene, double rtol) {
+  Scene s = scene;
+  s.integrator = "sdirk2";
+  s.adaptive = true;
+  s.rtol = rtol;
+  s.atol = 1e-3 * rtol;
+  s.error_estimate = false;  // the trials estimate each other's errors (driver/accuracy.h)
+  return s;
+}
+
+// Scene key time.accuracy_m: every trial is a written run into the output
+// folder (each replaces the one before), so the chosen run is the last trial
+// and is not run again; the summary records the trials and the estimate.
+RunReport run_for_accuracy(const Scene& scene, const RunOptions& options) {
+  (void)make_model(scene, options.model);  // a model the scene cannot build fails before the trials
+  if (options.progress)
+    std::fprintf(stderr, "weavelab: choosing the integrator and tolerance for a time error of %g m\n",
+                 scene.accuracy_m);
+  WrittenRun w;
+  Scene last_scene = scene;
+  auto run_trial = [&](double rtol, int k) {
+    w.files.reset();  // the folder of the trial before is closed before this one opens it
+    w.integrator.reset();
+    w = WrittenRun{};
+    last_scene = trial_scene(scene, rtol);
+    written_run(last_scene, options, "accuracy trial " + std::to_string(k), true, true, w);
+    return TrialRun{w.record.result, w.record.trajectory, w.record.cpu_s};
+  };
+  AccuracyChoice choice = search_accuracy(scene.accuracy_m, run_trial, options.progress);
+  if (options.on_frame)
+    for (const Frame& f : w.held_frames) options.on_frame(f);
+  w.rep.accuracy = std::move(choice);
+  if (w.rep.accuracy->estimate.ok()) w.rep.time_error = w.rep.accuracy->estimate;
+  write_summary(last_scene, options, w);
+  return std::move(w.rep);
+}
+
+}  // namespace
+
+RunReport run_scene(const Scene& scene, const RunOptions& options_in) {
+  RunOptions options = options_in;
+  if (options.model.empty()) options.model = yarn_level_model(scene);
+  check_run_memory(scene, options.model);
+  if (scene.accuracy_m > 0.0) return run_for_accuracy(scene, options);
+  WrittenRun w;
+  written_run(scene, options, "run", scene.error_estimate, false, w);
+  estimate_run_time_error(scene, options, run_integrator_options(scene), w.record, w.rep);
+  write_summary(scene, options, w);
+  return std::move(w.rep);
 }
 
 }  // namespace wl

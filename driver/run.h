@@ -22,8 +22,12 @@ struct RunOptions {
   std::filesystem::path out_dir;  // empty: a run in memory, nothing written (RunReport::summary_json only)
   bool progress = true;
   std::map<std::string, std::string> overrides;  // command-line values that replaced scene values
-  // Called with every output frame, t = 0 included, as it is written.
+  // Called with every output frame, t = 0 included, as it is written; with
+  // time.accuracy_m, with the chosen trial's frames once the search has ended.
   std::function<void(const Frame&)> on_frame;
+  // Called after every accepted step of every run this call makes, with what
+  // the run is ("run", "accuracy trial K", "time error") and the time reached.
+  std::function<void(const std::string& phase, double t)> on_step;
 };
 
 // The end state of a run with a settling phase (time.settle_dt_s): how far it
@@ -50,8 +54,11 @@ struct RunReport {
 };
 
 // The frames, metrics.csv and summary.json go to options.out_dir (README,
-// "Using it"). With time.accuracy_m set, the integrator and tolerance are chosen first
-// (choose_for_accuracy, runs in memory) and the written run uses them.
+// "Using it"). With time.accuracy_m set, every trial of the tolerance search
+// (driver/accuracy.h) is a written run into the folder, each replacing the one
+// before, and the record is the last trial's. SIGINT and SIGTERM (driver/interrupt.h)
+// end the current step of whichever run is going (a trial, the run, the time
+// error's second run): outcome `interrupted`, with frames, metrics and summary so far.
 RunReport run_scene(const Scene& scene, const RunOptions& options);
 
 }  // namespace wl

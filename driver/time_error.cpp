@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "driver/interrupt.h"
+
 namespace wl {
 
 void frame_distances(const Trajectory& a, const Trajectory& b, double factor, std::vector<double>& rms,
@@ -26,7 +28,8 @@ void frame_distances(const Trajectory& a, const Trajectory& b, double factor, st
 
 TimeErrorEstimate estimate_time_error(const Scene& scene, const std::string& model_name,
                                       const std::string& integrator_name, const IntegratorOptions& options,
-                                      const RecordedRun& run, bool progress) {
+                                      const RecordedRun& run, bool progress,
+                                      const std::function<void(double t)>& on_step) {
   const IntegratorCapabilities cap = make_integrator(integrator_name)->capabilities();
   TimeErrorEstimate e;
   IntegratorOptions second = options;
@@ -56,7 +59,17 @@ TimeErrorEstimate estimate_time_error(const Scene& scene, const std::string& mod
   }
   if (e.order > 0) factor = std::ldexp(1.0, e.order) / (std::ldexp(1.0, e.order) - 1.0);
   second.max_steps = std::max(second.max_steps, 2 * run.stats.steps + 16);
-  const RecordedRun refined = run_recorded(scene, model_name, integrator_name, second, record);
+  record.on_step = [&](Model&, double t, const Vec&, const Vec&) {
+    if (on_step) on_step(t);
+    throw_if_interrupted();
+  };
+  RecordedRun refined;
+  try {
+    refined = run_recorded(scene, model_name, integrator_name, second, record);
+  } catch (const Interrupted&) {
+    e.second_run = {Outcome::interrupted, interrupted_message(interrupt_signal())};
+    return e;
+  }
   e.second_run = refined.result;
   e.second_run_cpu_s = refined.cpu_s;
   e.second_run_steps = refined.stats.steps;

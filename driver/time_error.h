@@ -8,7 +8,10 @@
 //               assumes the error follows the tolerance (then the tighter run's
 //               own error is about 1 % of the estimate).
 // Every variant costs one more run of the scene (two to three times the run).
+// A fourth, looser_trial, is formed by `--accuracy` from its own trials
+// (driver/accuracy.h); its "second run" is the looser trial.
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -18,7 +21,7 @@
 namespace wl {
 
 struct TimeErrorEstimate {
-  std::string method;  // "richardson", "halved_step" or "tolerance"
+  std::string method;  // "richardson", "halved_step", "tolerance" (or "looser_trial", driver/accuracy.h)
   int order = 0;       // p of richardson and halved_step; 0 for tolerance
   std::vector<double> times;
   std::vector<double> rms, max;  // per frame over nodes [m]
@@ -33,10 +36,14 @@ struct TimeErrorEstimate {
 
 // Estimates the error of `run` (with step_ends recorded when the integrator
 // replays steps), which ran `scene` with `model_name`, `integrator_name` and
-// `options`. `progress` prints the second run's progress.
+// `options`. `progress` prints the second run's progress; `on_step` observes
+// its accepted steps (the time reached). A SIGINT or SIGTERM recorded by
+// driver/interrupt.h ends the second run after its current step: second_run
+// is then `interrupted` and no estimate is formed.
 TimeErrorEstimate estimate_time_error(const Scene& scene, const std::string& model_name,
                                       const std::string& integrator_name, const IntegratorOptions& options,
-                                      const RecordedRun& run, bool progress = false);
+                                      const RecordedRun& run, bool progress = false,
+                                      const std::function<void(double t)>& on_step = {});
 
 // What a mean distance between two runs measures, given each run's estimate
 // (the rule experiments/common/compare.py prints): "resolved" when both time errors

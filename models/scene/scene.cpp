@@ -50,7 +50,7 @@
 //     at most 1e7 fixed steps (duration_s / dt_s) and 1e5 frames (time_settings_violation)
 //     integrator (non-empty string; the run checks the name), adaptive (bool)
 //     linear_solver (non-empty string; the run checks the name)
-//     rtol in (0, 1), atol > 0
+//     rtol in [1e-12, 1) (below it a step's round-off is a sizeable part of the tolerance), atol > 0
 //     settle_after_s ≥ 0 (< duration_s), settle_dt_s > 0 (≤ output_interval_s): fixed
 //       steps only, no error_estimate or accuracy_m
 //   [terms]       stretch, bending, shear, parallel_contact, friction, gravity, wind,
@@ -504,7 +504,8 @@ void read_time(TableReader& top, Scene& s) {
     t->read_bool("adaptive", s.adaptive);
     t->read_string("linear_solver", s.linear_solver, "a non-empty linear solver name (string)",
                    [](const std::string& x) { return !x.empty(); });
-    t->read_number("rtol", s.rtol, "a number > 0 and < 1", [](double x) { return x > 0.0 && x < 1.0; });
+    t->read_number("rtol", s.rtol, "a number ≥ 1e-12 and < 1 (smaller tolerances are below round-off)",
+                   [](double x) { return x >= 1e-12 && x < 1.0; });
     t->read_number("atol", s.atol, "a number > 0", positive);
     t->read_bool("error_estimate", s.error_estimate);
     t->read_number("settle_after_s", s.settle_after_s, "a finite number ≥ 0 (s)",

@@ -21,7 +21,10 @@ std::optional<SettingViolation> time_settings_violation(const Scene& s,
   for (const auto& [key, value, unit] :
        {std::tuple{T, s.duration_s, " (s)"}, std::tuple{H, s.dt_s, " (s)"}, std::tuple{O, s.output_interval_s, " (s)"}})
     if (!finite_positive(value)) return violation(key, value, std::string("a finite number > 0") + unit);
-  if (!(s.rtol > 0.0 && s.rtol < 1.0)) return violation("time.rtol", s.rtol, "a number > 0 and < 1");
+  // Below 1e-12 (about 10⁴ ε) a step's round-off is a sizeable part of the
+  // tolerance: error control asked for less cannot deliver it.
+  if (!(s.rtol >= 1e-12 && s.rtol < 1.0))
+    return violation("time.rtol", s.rtol, "a number ≥ 1e-12 and < 1 (smaller tolerances are below round-off)");
   if (!finite_positive(s.atol)) return violation("time.atol", s.atol, "a finite number > 0");
 
   // Between two values: blame the one stated with more authority.

@@ -117,6 +117,21 @@ TEST_F(RunRecord, SigintAndSigtermLeaveAnInterruptedRecord) {
   }
 }
 
+// Every --accuracy trial is a written run: a signal during one ends its step
+// and leaves its record (before, the trials ignored it and a second signal
+// killed the process with nothing written).
+TEST_F(RunRecord, SigtermDuringAnAccuracyTrialLeavesAnInterruptedRecord) {
+  const fs::path out = dir_ / "accuracy";
+  const pid_t pid = start("long.toml", out, {"--quiet", "--accuracy", "1e-4"});
+  wait_for_rows(out, 5);
+  ::kill(pid, SIGTERM);
+  EXPECT_EQ(wait_exit(pid), 143) << log();
+  EXPECT_TRUE(consistent(out, "interrupted"));
+  const std::string summary = read_text(out / "summary.json");
+  EXPECT_NE(summary.find("\"verdict\": \"interrupted\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"name\": \"sdirk2\""), std::string::npos) << summary;
+}
+
 TEST_F(RunRecord, BrokenStderrPipeKeepsTheRecord) {
   int fds[2];
   ASSERT_EQ(::pipe(fds), 0);

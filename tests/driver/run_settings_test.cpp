@@ -75,9 +75,10 @@ TEST(RunSettings, BadOverridesNameOptionValueAndRule) {
   add([&](RunOverrides& o) { o.output_interval_s = 1e-4; }, "--output-interval", "0.0001", "≥ time.dt_s");
   add([&](RunOverrides& o) { o.rtol = 2.0; }, "--rtol", "2", "< 1");
   add([&](RunOverrides& o) { o.rtol = nan; }, "--rtol", "nan", "< 1");
-  // The value as given, not the atol it gives.
-  add([&](RunOverrides& o) { o.rtol = 5e-324; }, "--rtol", "5e-324",
-      "a tolerance whose atol = 1e-3·rtol is a finite number > 0 (it gives 0)");
+  // The value as given; below 1e-12 a tolerance is below round-off (sdirk2 at 1e-16 ran for days).
+  add([&](RunOverrides& o) { o.rtol = 5e-324; }, "--rtol", "5e-324", "a number ≥ 1e-12 and < 1");
+  add([&](RunOverrides& o) { o.rtol = 1e-16; }, "--rtol", "1e-16", "smaller tolerances are below round-off");
+  add([&](RunOverrides& o) { o.rtol = 9.9e-13; }, "--rtol", "9.9e-13", "a number ≥ 1e-12 and < 1");
   add([&](RunOverrides& o) { o.integrator = "rk99"; }, "--integrator", "\"rk99\"", "one of be-linear");
   add([&](RunOverrides& o) { o.integrator = ""; }, "--integrator", "\"\"", "one of");
   add(

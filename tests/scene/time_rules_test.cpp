@@ -41,6 +41,18 @@ TEST(TimeRules, EveryValueFiniteAndPositive) {
   }
 }
 
+// A tolerance below round-off is refused; the floor itself is accepted.
+TEST(TimeRules, RtolHasAFloorNearRoundOff) {
+  Scene s;
+  for (double x : {1e-16, 9.99e-13, 5e-324}) {
+    s.rtol = x;
+    EXPECT_EQ(violated_key(s), "time.rtol") << x;
+  }
+  s.rtol = 1e-12;
+  s.atol = 1e-15;
+  EXPECT_FALSE(time_settings_violation(s, none)) << "rtol 1e-12";
+}
+
 TEST(TimeRules, StepWithinIntervalWithinDuration) {
   Scene s;
   s.dt_s = 2 * s.output_interval_s;
