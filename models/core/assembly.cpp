@@ -23,8 +23,8 @@ void gather_state(std::span<const int> s, const Vec& q, const Vec& v, const Vec&
 }
 
 // Greedy colouring: an element gets the first colour not used by any element
-// sharing a DoF with it. As many colours as that takes (a cloth crushed to a
-// point by its scene puts every element on a few DoFs: hundreds of colours).
+// sharing a DoF with it. As many colours as that takes: a knit whose yarn
+// radius is large against its loops needs more than 64.
 std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colours) {
   const int ne = term.num_elements();
   std::vector<int> colour(ne, -1);
