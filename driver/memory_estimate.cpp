@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -18,14 +19,28 @@ constexpr double kProcess = 64e6;
 constexpr double kBase = 4000.0;
 constexpr double kPerLog2 = 700.0;
 
+// A knit's DoFs (docs/models.md §11.1): 4 contact nodes per loop and contact
+// row (two sides, two ends) on courses + 1 contact rows, 3 coordinates each;
+// when sliding, one sliding coordinate per yarn through the two-yarn nodes
+// (courses − 1 inner contact rows) off the frozen first and last wale.
+long knit_dofs(const KnitPattern& k, bool sliding) {
+  const long courses = k.courses, wales = k.wales;
+  const long nodes = 4 * wales * (courses + 1);
+  return 3 * nodes + (sliding ? 8 * std::max(0L, courses - 1) * std::max(0L, wales - 2) : 0);
+}
+
 }  // namespace
 
 MemoryEstimate estimate_run_memory(const Scene& scene, const std::string& model_name) {
-  const long w = scene.warps, h = scene.wefts;
+  // A knit's continuum lies on its contact grid: 2·wales columns, courses + 1 rows (docs/models.md §11.9).
+  const long w = scene.knit ? 2L * scene.knit->wales : scene.warps,
+             h = scene.knit ? scene.knit->courses + 1L : scene.wefts;
   MemoryEstimate e;
   if (model_name == "fem") {
     const long k = std::max(1, scene.fem.stride);
     e.dofs = 3 * ((w - 1) / k + 1) * ((h - 1) / k + 1);
+  } else if (scene.knit) {
+    e.dofs = knit_dofs(*scene.knit, scene.sliding);
   } else {
     // 3 DoFs per node, plus (u, v) on interior nodes when sliding (docs/models.md §2.1).
     e.dofs = 3 * w * h + (scene.sliding ? 2 * std::max(0L, w - 2) * std::max(0L, h - 2) : 0);

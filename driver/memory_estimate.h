@@ -16,7 +16,8 @@ struct MemoryEstimate {
   double bytes = 0.0;
 };
 
-// DoFs of `model_name` ("yarn" or "fem") on the scene's grid, and the estimated peak memory.
+// DoFs of `model_name` ("yarn", "knit" or "fem") on the scene's grid (a knit's: its loops' contact nodes),
+// and the estimated peak memory.
 MemoryEstimate estimate_run_memory(const Scene& scene, const std::string& model_name);
 // MemAvailable of /proc/meminfo (bytes); the physical memory where it cannot be read.
 double available_memory_bytes();

@@ -146,9 +146,13 @@ std::optional<std::string> memory_shortfall(const Scene& scene, const std::strin
 }
 
 void check_run_memory(const Scene& scene, const std::string& model_name) {
-  if (const auto expected = memory_shortfall(scene, model_name))
-    fail(scene, {}, "cloth.warps", std::to_string(scene.warps) + " (× " + std::to_string(scene.wefts) + " wefts)",
-         *expected);
+  const auto expected = memory_shortfall(scene, model_name);
+  if (!expected) return;
+  if (scene.knit)
+    fail(scene, {}, "cloth.pattern.courses",
+         std::to_string(scene.knit->courses) + " (× " + std::to_string(scene.knit->wales) + " wales)", *expected);
+  fail(scene, {}, "cloth.warps", std::to_string(scene.warps) + " (× " + std::to_string(scene.wefts) + " wefts)",
+       *expected);
 }
 
 void fit_scene_times(Scene& scene, const std::map<std::string, std::string>& record) {

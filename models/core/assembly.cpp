@@ -23,20 +23,21 @@ void gather_state(std::span<const int> s, const Vec& q, const Vec& v, const Vec&
 }
 
 // Greedy colouring: an element gets the first colour not used by any element
-// sharing a DoF with it.
+// sharing a DoF with it. As many colours as that takes: a knit whose yarn
+// radius is large against its loops needs more than 64.
 std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colours) {
   const int ne = term.num_elements();
   std::vector<int> colour(ne, -1);
   std::vector<std::vector<int>> dof_colours(num_dofs);
+  std::vector<char> used;  // per colour so far: taken by a neighbour of the element
   int max_colour = 0;
   for (int e = 0; e < ne; ++e) {
-    unsigned long long used = 0;
+    used.assign(static_cast<size_t>(max_colour) + 1, 0);
     for (int i : term.stencil(e))
       if (is_dof(i))
-        for (int c : dof_colours[i]) used |= 1ull << c;
+        for (int c : dof_colours[i]) used[c] = 1;
     int c = 0;
-    while (used & (1ull << c)) ++c;
-    if (c >= 64) throw std::logic_error("assembly: term '" + term.name() + "' needs more than 64 colours");
+    while (used[c]) ++c;  // used[max_colour] is 0: a new colour at the latest
     colour[e] = c;
     max_colour = std::max(max_colour, c + 1);
     for (int i : term.stencil(e))

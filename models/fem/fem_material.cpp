@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include <toml++/toml.h>
+#include "models/scene/toml_include.h"
 
 #include "models/fem/knit_contact_mesh.h"
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "models/scene/obstacle_mesh.h"
@@ -103,6 +104,28 @@ void read_one(TableReader& t, Scene& s) {
   s.obstacles.push_back(o);
 }
 
+// A d̂ that no model of the scene can take, refused where it is set (a scene
+// edit in Python as much as a file): the cloth would feel itself at rest. The
+// models refuse d̂ at or above their node spacing ℓ or the distance of the
+// closest two surface primitives at rest that share no node (docs/models.md
+// §3.11.7): √½ ℓ on the flat grid, a node to its cell's far diagonal. The
+// continuum's ℓ = stride · cloth.spacing_m is the largest, so that is the bound
+// here; the yarn level's √½ · cloth.spacing_m is checked when it is built.
+void check_self_contact_distance(const TableReader& sc, const Scene& s) {
+  const SelfContactParams& p = s.self_contact;
+  if (!p.enabled || !p.activation_distance_m) return;
+  const double spacing = std::max(1, s.fem.stride) * s.spacing_m;
+  const bool grid = s.fem.mesh_file.empty();
+  const double bound = grid ? std::sqrt(0.5) * spacing : spacing;
+  if (*p.activation_distance_m < bound) return;
+  std::ostringstream expected;
+  expected << "a number below " << bound << " m: " << (grid ? "√½ × " : "") << "the node spacing " << spacing << " m ("
+           << (s.fem.stride > 1 ? "fem.stride × " : "") << "cloth.spacing_m)"
+           << (grid ? ", the distance at rest of a node from its cell's far diagonal" : "")
+           << "; the cloth must not feel itself at rest";
+  sc.fail_key("activation_distance_m", expected.str(), "");
+}
+
 }  // namespace
 
 void read_obstacles(TableReader& top, Scene& s) {
@@ -114,6 +137,7 @@ void read_obstacles(TableReader& top, Scene& s) {
     sc->read_number("activation_distance_m", p.activation_distance_m, "a number > 0 (m)", positive);
     sc->read_number("stiffness_N_per_m", p.stiffness_N_per_m, "a number > 0 (N/m)", positive);
     sc->finish();
+    check_self_contact_distance(*sc, s);
   }
   auto c = top.subtable("obstacle_contact");
   if (!c) return;

@@ -152,9 +152,11 @@ std::map<std::string, YarnTypeDef> read_yarn_types(TableReader& top) {
 void read_knit_pattern(TableReader& p, Scene& s, KnitPattern::Kind kind) {
   KnitPattern k;
   k.kind = kind;
-  // ≤ 256: the run's memory check sizes woven cloths only; 256 × 256 loops are about 1.3 million DoFs.
+  // ≤ 256: 256 × 256 loops are about 1.3 million DoFs; the run's memory check
+  // (driver/memory_estimate.h) refuses what does not fit, located at courses.
   const std::string count = "an integer ≥ 2 and ≤ 256";
   auto in_range = [](long long x) { return x >= 2 && x <= 256; };
+  if (auto v = p.table()["courses"]) s.key_lines[p.key_path("courses")] = line_of(*v.node());
   p.read_int("courses", k.courses, count, in_range);
   p.read_int("wales", k.wales, count, in_range);
   p.read_number("course_spacing_m", k.course_spacing_m, "a number > 0 (m)", positive);

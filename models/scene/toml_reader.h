@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include <toml++/toml.h>
+#include "models/scene/toml_include.h"
 
 #include "models/scene/scene.h"
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include <pybind11/pybind11.h>
-#include <toml++/toml.h>
+#include "models/scene/toml_include.h"
 
 #include "models/scene/scene.h"
 

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "driver/memory_estimate.h"
+#include "models/scene/scene.h"
 #include "tests/output/output_test_util.h"
 #include "tests/support/test_scenes.h"
 
@@ -151,6 +153,34 @@ TEST_F(UpFrontChecks, AClothTooLargeForMemoryIsExit2AtOnce) {
     EXPECT_FALSE(fs::exists(out())) << subcommand;
   }
   const Result r = command("calibrate", tiny(), out(), "--patch 100000");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(has(r, "'--patch': got 100000") && has(r, "fits in memory")) << r.output;
+  EXPECT_FALSE(fs::exists(out()));
+}
+
+// The largest knit the scene format takes (256 × 256 loops, about 1.3 million
+// DoFs): sized by its own loops, not by the woven cloth's default warps.
+TEST_F(UpFrontChecks, AKnitTooLargeForMemoryIsExit2AtOnce) {
+  const std::string text =
+      "[cloth]\nspacing_m = 0.002\nradius_m = 0.0002\n[cloth.pattern]\nkind = \"stockinette\"\ncourses = 256\n"
+      "wales = 256\n[time]\nduration_s = 0.01\ndt_s = 0.001\noutput_interval_s = 0.01\n";
+  if (wl::estimate_run_memory(wl::parse_scene(text, "huge_knit.toml"), "knit").bytes <= wl::available_memory_bytes())
+    GTEST_SKIP() << "this machine has the memory for the largest knit";
+  const fs::path huge = write("huge_knit.toml", text);
+  for (const char* subcommand : {"run", "diagnose", "modes", "fidelity"}) {
+    const auto start = std::chrono::steady_clock::now();
+    const Result r = command(subcommand, huge, out());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exit_code, 2) << subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r, "huge_knit.toml:6: key 'cloth.pattern.courses': got 256 (× 256 wales)") &&
+                has(r, "fits in memory"))
+        << subcommand << "\n"
+        << r.output;
+    EXPECT_LT(seconds, 5.0) << subcommand;
+    EXPECT_FALSE(fs::exists(out())) << subcommand;
+  }
+  const fs::path knit = write("knit.toml", wl::test::hanging_knit_toml(4, 4));
+  const Result r = command("calibrate", knit, out(), "--patch 100000");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_TRUE(has(r, "'--patch': got 100000") && has(r, "fits in memory")) << r.output;
   EXPECT_FALSE(fs::exists(out()));

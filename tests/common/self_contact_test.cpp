@@ -227,7 +227,8 @@ TEST(SelfContactScene, ADistanceTheFlatClothWouldFeelIsRefused) {
     EXPECT_FALSE(parse_scene("[cloth]\nwarps = 3\nwefts = 3\n", "s.toml").self_contact.enabled);
     const Scene fine = parse_scene(base + "activation_distance_m = 0.0005\n", "s.toml");
     EXPECT_NE(make_model(fine, model)->describe().at("terms").find("self_contact"), std::string::npos) << model;
-    const Scene coarse = parse_scene(base + "activation_distance_m = 0.00075\n", "s.toml");
+    Scene coarse = fine;  // past the scene reader's own check (SelfContactScene.ADistanceNoModelCanTake...)
+    coarse.self_contact.activation_distance_m = 0.00075;
     try {
       make_model(coarse, model);
       ADD_FAILURE() << model << ": accepted";
@@ -257,6 +258,35 @@ TEST(SelfContactScene, ADistanceTheFlatClothWouldFeelIsRefused) {
         << e.what();
   }
   EXPECT_TRUE(terms.empty());
+}
+
+// The scene reader refuses a d̂ that no model of the scene can take, where it
+// is set (a file, or a scene edit in Python), at the bound the models apply on
+// the flat grid: √½ ℓ with ℓ the continuum's node spacing stride · spacing_m.
+// Just below it, both models at stride 1 build.
+TEST(SelfContactScene, ADistanceNoModelCanTakeIsRefusedByTheSceneReader) {
+  const std::string base =
+      "[cloth]\nwarps = 5\nwefts = 5\nspacing_m = 0.001\n[pose]\nkind = \"flat\"\n[self_contact]\nenabled = true\n";
+  try {
+    parse_scene(base + "activation_distance_m = 0.00075\n", "s.toml");
+    ADD_FAILURE() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("s.toml:9: key 'self_contact.activation_distance_m': got 0.00075, expected a "
+                                          "number below 0.000707107 m: √½ × the node spacing 0.001 m",
+                                          0),
+              0u)
+        << e.what();
+  }
+  const Scene below = parse_scene(base + "activation_distance_m = 0.000707\n", "s.toml");
+  for (const char* model : {"yarn", "fem"})
+    EXPECT_NE(make_model(below, model)->describe().at("terms").find("self_contact"), std::string::npos) << model;
+  // The continuum at stride 2 takes d̂ up to √½ · 2 ℓ: the reader lets 1.2 ℓ pass, the yarn level refuses it.
+  const Scene strided = parse_scene(base + "activation_distance_m = 0.0012\n[fem]\nstride = 2\n", "s.toml");
+  EXPECT_THROW(make_model(strided, "yarn"), std::invalid_argument);
+  EXPECT_THROW(parse_scene(base + "activation_distance_m = 0.0015\n[fem]\nstride = 2\n", "s.toml"), SceneError);
+  EXPECT_NO_THROW(make_model(strided, "fem"));
+  EXPECT_NO_THROW(parse_scene("[cloth]\nwarps = 5\n[self_contact]\nenabled = false\nactivation_distance_m = 0.01\n",
+                              "s.toml"));  // off: nothing to refuse
 }
 
 }  // namespace

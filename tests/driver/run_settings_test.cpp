@@ -6,6 +6,7 @@
 #include "driver/memory_estimate.h"
 #include "driver/run_settings.h"
 #include "integrators/amg_preconditioner.h"
+#include "models/model_factory.h"
 
 namespace wl {
 namespace {
@@ -267,6 +268,47 @@ TEST(RunSettings, AClothThatCannotFitIsRefusedWithItsEstimate) {
   const MemoryEstimate e257 = estimate_run_memory(s257, "yarn");
   EXPECT_EQ(e257.dofs, 328197);
   EXPECT_GT(e257.bytes, 5.15e9);
+}
+
+// A knit of `courses` × `wales` loops, with the [fem] stiffnesses its continuum needs.
+Scene knit_scene(int courses, int wales, bool sliding, int stride) {
+  const std::string text =
+      "[cloth]\nspacing_m = 0.002\nradius_m = 0.0002\nsliding = " + std::string(sliding ? "true" : "false") +
+      "\n[cloth.pattern]\nkind = \"stockinette\"\ncourses = " + std::to_string(courses) +
+      "\nwales = " + std::to_string(wales) + "\n[fem]\nstride = " + std::to_string(stride) +
+      "\nwarp_stretch_N_per_m = 300.0\nweft_stretch_N_per_m = 120.0\nshear_N_per_m = 0.8\n"
+      "warp_bending_N_m = 1e-7\nweft_bending_N_m = 8e-8\n";
+  return parse_scene(text, "knit.toml");
+}
+
+TEST(RunSettings, AKnitsEstimateCountsTheDoFsItsModelsHave) {
+  struct Size {
+    int courses, wales, stride;
+  };
+  for (const Size& k : {Size{2, 2, 1}, Size{4, 4, 1}, Size{6, 8, 3}, Size{5, 8, 5}})
+    for (bool sliding : {true, false}) {
+      const Scene s = knit_scene(k.courses, k.wales, sliding, k.stride);
+      const std::string at = std::to_string(k.courses) + "×" + std::to_string(k.wales) + (sliding ? " sliding" : "");
+      EXPECT_EQ(estimate_run_memory(s, "knit").dofs, make_model(s, "knit")->num_dofs()) << at;
+      EXPECT_EQ(estimate_run_memory(s, "fem").dofs, make_model(s, "fem")->num_dofs()) << at << " stride " << k.stride;
+    }
+}
+
+TEST(RunSettings, AKnitThatCannotFitIsRefusedAtItsCourses) {
+  // 256 × 256 loops: 4·256·257 contact nodes, 3 coordinates each, and 8·255·254 sliding coordinates.
+  const Scene s = knit_scene(256, 256, true, 1);
+  const MemoryEstimate e = estimate_run_memory(s, "knit");
+  EXPECT_EQ(e.dofs, 3L * 4 * 256 * 257 + 8L * 255 * 254);
+  EXPECT_GT(e.bytes, 2e10);  // ≈ 1.3 million DoFs at the per-DoF cost of memory_estimate.cpp
+  if (e.bytes <= available_memory_bytes()) GTEST_SKIP() << "this machine has the memory for the largest knit";
+  try {
+    check_run_memory(s, "knit");
+    FAIL() << "a 256×256 knit was accepted";
+  } catch (const SceneError& e2) {
+    const std::string msg = e2.what();
+    EXPECT_EQ(msg.rfind("knit.toml:7: key 'cloth.pattern.courses': got 256 (× 256 wales)", 0), 0u) << msg;
+    EXPECT_NE(msg.find("the knit model has " + std::to_string(e.dofs) + " DoFs"), std::string::npos) << msg;
+  }
 }
 
 }  // namespace
