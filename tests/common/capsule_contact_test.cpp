@@ -2,12 +2,15 @@
 // barrier on the gap g = d − 2R against finite differences in every
 // closest-feature region (interior–interior, endpoint–interior, endpoint–
 // endpoint, parallel segments) on both sides of the switch between two regions
-// and down to gaps of 10⁻³ d̂; parallel overlapping segments; two yarns fired
-// at each other never pass through one another under be-linear, be-newton and sdirk2.
+// and down to gaps of 10⁻³ d̂; parallel overlapping segments; the assembled
+// term's force and step stiffness; two yarns fired at each other never pass
+// through one another under be-linear, be-newton and sdirk2.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+
+#include <Eigen/Eigenvalues>
 
 #include "integrators/integrator.h"
 #include "models/common/obstacle_barrier.h"
@@ -180,6 +183,47 @@ TEST(CapsuleSteps, YarnsFiredAtEachOtherNeverPassThrough) {
     EXPECT_GT(integ->stats().rejected_steps, 0) << name << ": the step was never retaken";
     EXPECT_LT(integ->v()[5], 0.0) << name << ": the first yarn did not rebound";
   }
+}
+
+// The assembled term over capsules (docs/models.md §3.11.7, §11.10): the
+// per-node force is −∇ of the summed pair energies κ b(d − 2R) (central
+// differences over the pairs the broad phase finds), and the step stiffness
+// it assembles bounds their Hessian from above, for the two yarns brought to
+// 0.3 d̂ apart and tilted, where two segment pairs are active.
+TEST(CapsuleTerm, ForceIsMinusTheGradientOfThePairsAndItsStiffnessBoundsTheirHessian) {
+  TwoYarns model;
+  const double dhat = TwoYarns::kDh;
+  Vec q = model.initial_q();
+  for (int k = 3; k < 6; ++k) q[3 * k + 2] -= 2e-3 - 2.0 * TwoYarns::kR - 0.3 * dhat;
+  q[11] += 0.2 * dhat;
+  q[8] -= 0.1 * dhat;
+  const Vec v = Vec::Zero(18);
+  const SelfContactTerm pairs(ContactSurface{{}, {0, 3, 6, 9, 12, 15}}, dhat, kKappa,
+                              ContactCapsules{{{0, 1}, {1, 2}, {3, 4}, {4, 5}}, TwoYarns::kR, {}});
+  auto energy = [&](const Vec& x) {
+    double e = 0.0;
+    for (const auto& p : pairs.candidates(x, x, dhat)) e += kKappa * contact_barrier(pairs.distance(p, x), dhat).b;
+    return e;
+  };
+  Evaluation at, plus, minus;
+  for (Evaluation* e : {&at, &plus, &minus}) allocate_evaluation(model, *e);
+  model.evaluate(0.0, q, v, kForce | kDfdq, at);
+  const double f_max = at.force.cwiseAbs().maxCoeff();
+  ASSERT_GT(f_max, 0.0) << "no pair is active";
+  const double h = 1e-4 * dhat;
+  Eigen::MatrixXd hessian(18, 18);
+  for (int k = 0; k < 18; ++k) {
+    Vec qp = q, qm = q;
+    qp[k] += h;
+    qm[k] -= h;
+    EXPECT_NEAR(at.force[k], -(energy(qp) - energy(qm)) / (2 * h), 1e-6 * f_max) << "DoF " << k;
+    model.evaluate(0.0, qp, v, kForce, plus);
+    model.evaluate(0.0, qm, v, kForce, minus);
+    hessian.col(k) = -(plus.force - minus.force) / (2 * h);
+  }
+  const Eigen::MatrixXd bound = -Eigen::MatrixXd(at.dfdq), h_sym = 0.5 * (hessian + hessian.transpose());
+  const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(bound - h_sym).eigenvalues().minCoeff();
+  EXPECT_GE(lowest, -1e-6 * h_sym.norm());
 }
 
 }  // namespace
