@@ -1,6 +1,6 @@
 // A capability of the models that count their own intersecting primitive
 // pairs (docs/design.md §3.1): the knit counts the pairs of yarn segments
-// whose capsules overlap (docs/models.md §11.7). A model offers it by deriving
+// whose capsules overlap (docs/models.md §11.10). A model offers it by deriving
 // from IntersectionCount besides Model; the run asks with
 // intersection_count(model), null for every other model, and writes the count
 // per frame into self_intersections.csv.

@@ -2,7 +2,7 @@
 // barriers (self_contact_pair.h) over the cloth's surface triangles, the pairs
 // found at every evaluation by CGAL's box intersection over the primitives'
 // boxes widened by d̂/2 on every side, and continuous collision over every step's move.
-// Yarn–yarn contact of a knit (§11.7) is the same term over capsules: yarn
+// Yarn–yarn contact of a knit (§11.10) is the same term over capsules: yarn
 // segments of radius R whose edge–edge barrier acts on the gap d − 2R, with
 // the pairs other terms already model left out (ContactCapsules).
 //
@@ -38,7 +38,7 @@ struct ContactSurface {
 };
 
 // Yarn segments between surface nodes, as capsules of radius R (docs/models.md
-// §11.7): their edge–edge pairs act on the gap d − 2R; the segment pairs in
+// §11.10): their edge–edge pairs act on the gap d − 2R; the segment pairs in
 // `modelled` (indices into `segments`) are left out.
 struct ContactCapsules {
   std::vector<std::array<int, 2>> segments;

@@ -379,8 +379,8 @@ std::vector<YarnPiece> KnitModel::yarn_pieces() const {
   return unique_pieces(all);
 }
 
-// Yarn–yarn contact (docs/models.md §11.7) between the open cloth's pieces,
-// the compression's pairs that start in contact left out (yarn_contact.h); built whether [self_contact] is on or not,
+// Yarn–yarn contact (docs/models.md §11.10) between the open cloth's pieces,
+// the compression's pairs left out (yarn_contact.h); built whether [self_contact] is on or not,
 // for the intersection count, and added to the terms when it is.
 void KnitModel::add_yarn_contact() {
   const std::vector<YarnPiece> pieces = yarn_pieces();
@@ -390,7 +390,7 @@ void KnitModel::add_yarn_contact() {
   const std::vector<PiecePair> compressed =
       compression_pairs(x, pieces, {Vec3::Zero()}, knit_compression_cutoff(graph_.layout(), radius));
   const ObstacleContactRule rule = knit_contact_rule(scene_, graph_, pieces);
-  const KnitContactSet set = knit_contact_set(graph_, pieces, compressed, radius, rule.activation_distance_m, q0_);
+  const KnitContactSet set = knit_contact_set(graph_, pieces, compressed, radius);
   capsules_ = std::make_shared<const SelfContactTerm>(set.surface, rule.activation_distance_m, rule.stiffness_N_per_m,
                                                       set.capsules);
   add_self_contact(scene_, rule, radius, set.surface, q0_, terms_, set.capsules);

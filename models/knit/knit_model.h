@@ -58,7 +58,7 @@ class KnitModel : public TermModel, public SlidingCoordinates, public Intersecti
   std::string invalid_state(const Vec& q) const override;
   std::map<std::string, std::string> describe() const override;
   // IntersectionCount: the pairs of yarn pieces that the contact filter keeps
-  // whose capsules overlap (gap d − 2R < 0; docs/models.md §11.7), with or without the contact on.
+  // whose capsules overlap (gap d − 2R < 0; docs/models.md §11.10), with or without the contact on.
   std::string intersection_column() const override { return "intersecting_segment_pairs"; }
   long intersecting_pairs(const Vec& q) const override { return capsules_ ? capsules_->overlapping_pairs(q) : 0; }
 

@@ -5,17 +5,12 @@
 namespace wl {
 
 KnitContactSet knit_contact_set(const KnitGraph& graph, const std::vector<YarnPiece>& pieces,
-                                const std::vector<PiecePair>& compressed, double radius, double dhat, const Vec& q0) {
+                                const std::vector<PiecePair>& compressed, double radius) {
   KnitContactSet set;
   for (const KnitNode& n : graph.nodes()) set.surface.node_x.push_back(n.x_dof);
   for (const YarnPiece& p : pieces) set.capsules.segments.push_back({p.n0, p.n1});
   set.capsules.radius = radius;
-  auto x = [&](int node) { return Vec3(q0.segment<3>(graph.node(node).x_dof)); };
-  for (const PiecePair& p : compressed) {
-    const YarnPiece &a = pieces[p.a], &b = pieces[p.b];
-    const double d = closest_support(PairKind::edge_edge, {x(a.n0), x(a.n1), x(b.n0), x(b.n1)}).distance;
-    if (d - 2.0 * radius < dhat) set.capsules.modelled.push_back({p.a, p.b});
-  }
+  for (const PiecePair& p : compressed) set.capsules.modelled.push_back({p.a, p.b});
   return set;
 }
 

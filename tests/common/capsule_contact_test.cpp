@@ -1,4 +1,4 @@
-// Yarn–yarn contact between capsules (docs/models.md §11.7): the edge–edge
+// Yarn–yarn contact between capsules (docs/models.md §11.10): the edge–edge
 // barrier on the gap g = d − 2R against finite differences in every
 // closest-feature region (interior–interior, endpoint–interior, endpoint–
 // endpoint, parallel segments) on both sides of the switch between two regions

@@ -1,4 +1,4 @@
-// Yarn–yarn contact of a knit (docs/models.md §11.7): the filter leaves the
+// Yarn–yarn contact of a knit (docs/models.md §11.10): the filter leaves the
 // tiled rest shape untouched (no pair it keeps starts within d̂, so the
 // contact adds nothing to the rest force, while without the filter the rib's
 // touching wales would start in contact); [self_contact] on a knit scene
@@ -63,8 +63,7 @@ TEST(KnitYarnContact, TheFilterLeavesTheRestShapeUntouched) {
     const Pieces p = knit_pieces(with, on.radius_m);
     ASSERT_GT(p.modelled.size(), 0u) << kind;
     const ObstacleContactRule rule = knit_contact_rule(on, with.graph(), p.pieces);
-    KnitContactSet set =
-        knit_contact_set(with.graph(), p.pieces, p.modelled, on.radius_m, rule.activation_distance_m, q0);
+    KnitContactSet set = knit_contact_set(with.graph(), p.pieces, p.modelled, on.radius_m);
     const SelfContactTerm filtered(set.surface, rule.activation_distance_m, rule.stiffness_N_per_m, set.capsules);
     set.capsules.modelled.clear();
     const SelfContactTerm unfiltered(set.surface, rule.activation_distance_m, rule.stiffness_N_per_m, set.capsules);
