@@ -14,6 +14,7 @@
 #include "driver/interrupt.h"
 #include "driver/run_settings.h"
 #include "driver/run_summary.h"
+#include "models/common/intersection_count.h"
 #include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/metrics_csv.h"
@@ -94,7 +95,8 @@ struct RunFiles {
   std::optional<PvdSeries> series;
   std::optional<MetricsCsv> metrics;
   // The rigid obstacles, a second series beside the cloth's (docs/models.md §3.11.5).
-  // With them, the cloth's self-intersecting triangle pairs per frame (CGAL, docs/models.md §3.11.7).
+  // With them, the cloth's self-intersecting triangle pairs per frame (CGAL, docs/models.md §3.11.7);
+  // a model that counts its own (IntersectionCount: the knit's overlapping yarn capsules, §11.7) writes its count.
   std::optional<PvdSeries> obstacle_series;
   std::optional<MetricsCsv> intersections;
 
@@ -105,11 +107,12 @@ struct RunFiles {
     metrics.emplace(out_dir / "metrics.csv",
                     std::vector<std::string>{"time_s", "kinetic_J", "potential_J", "max_speed_m_per_s", "newton_iters",
                                              "step_wall_s"});
-    if (model.obstacle_frame(0.0).points.rows() > 0) {
-      obstacle_series.emplace(out_dir, "obstacles");
+    const IntersectionCount* counter = intersection_count(model);
+    if (model.obstacle_frame(0.0).points.rows() > 0) obstacle_series.emplace(out_dir, "obstacles");
+    if (counter || obstacle_series)
       intersections.emplace(out_dir / "self_intersections.csv",
-                            std::vector<std::string>{"time_s", "intersecting_triangle_pairs"});
-    }
+                            std::vector<std::string>{"time_s", counter ? counter->intersection_column()
+                                                                       : std::string("intersecting_triangle_pairs")});
   }
 };
 
@@ -194,6 +197,12 @@ struct WrittenRun {
   std::vector<Frame> held_frames;  // the frames options.on_frame gets later (--accuracy trials)
 };
 
+// The intersecting pairs of a frame at state q: the model's own count, else the triangles' (CGAL).
+long count_intersections(const Model& model, const Vec& q, const Frame& f) {
+  if (const IntersectionCount* counter = intersection_count(model)) return counter->intersecting_pairs(q);
+  return count_self_intersections(f);
+}
+
 // Runs `scene` into options.out_dir: frames and metrics.csv; the report, not the
 // summary. `phase` names it for options.on_step. `keep` fills w.record;
 // `hold_frames` keeps the frames in w.held_frames instead of calling options.on_frame.
@@ -230,7 +239,8 @@ void written_run(const Scene& scene, const RunOptions& options, const std::strin
     if (hold_frames) w.held_frames.push_back(f);
     else if (options.on_frame) options.on_frame(f);
     if (files.obstacle_series) files.obstacle_series->add(model.obstacle_frame(f.time));
-    if (files.intersections) files.intersections->row({f.time, double(count_self_intersections(f))});
+    if (files.intersections)
+      files.intersections->row({f.time, double(count_intersections(model, integrator.q(), f))});
     last_frame = std::move(f);
   };
   integrator.initialize(model, 0.0, model.initial_q(), model.initial_v(), iopt);

@@ -56,13 +56,29 @@ ObstacleContactRule self_contact_rule(const Scene& scene, double node_spacing_m,
   return obstacle_contact_rule(s, node_spacing_m, max_node_mass_kg);
 }
 
-SelfContactTerm::SelfContactTerm(ContactSurface surface, double dhat, double kappa)
-    : surface_(std::move(surface)), dhat_(dhat), kernel_(dhat, kappa) {
+namespace {
+std::array<int, 2> sorted_edge(std::array<int, 2> e) {
+  if (e[1] < e[0]) std::swap(e[0], e[1]);
+  return e;
+}
+std::array<int, 4> edge_pair_key(std::array<int, 2> a, std::array<int, 2> b) {
+  a = sorted_edge(a);
+  b = sorted_edge(b);
+  if (b < a) std::swap(a, b);
+  return {a[0], a[1], b[0], b[1]};
+}
+}  // namespace
+
+SelfContactTerm::SelfContactTerm(ContactSurface surface, double dhat, double kappa, const ContactCapsules& capsules)
+    : surface_(std::move(surface)), dhat_(dhat), radius_(capsules.radius), kernel_(dhat, kappa, 2.0 * capsules.radius) {
   const int n = static_cast<int>(surface_.node_x.size());
   std::set<std::array<int, 2>> edges;
   for (const auto& t : surface_.triangles)
-    for (int k = 0; k < 3; ++k) edges.insert({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+    for (int k = 0; k < 3; ++k) edges.insert(sorted_edge({t[k], t[(k + 1) % 3]}));
+  for (const auto& e : capsules.segments) edges.insert(sorted_edge(e));
   edges_.assign(edges.begin(), edges.end());
+  for (const auto& p : capsules.modelled)
+    modelled_.insert(edge_pair_key(capsules.segments[p[0]], capsules.segments[p[1]]));
   for (int k = 0; k < n; ++k) {
     const int x = surface_.node_x[k];
     stencils_.push_back({x, x + 1, x + 2});
@@ -86,7 +102,13 @@ std::array<Vec3, 4> SelfContactTerm::nodes(const Pair& p, const Vec& q) const {
 }
 
 double SelfContactTerm::distance(const Pair& p, const Vec& q) const {
-  return closest_support(p.kind, nodes(p, q)).distance;
+  return closest_support(p.kind, nodes(p, q)).distance - 2.0 * radius_;
+}
+
+long SelfContactTerm::overlapping_pairs(const Vec& q) const {
+  long n = 0;
+  for (const Pair& p : candidates(q, q, 0.0)) n += distance(p, q) < 0.0;
+  return n;
 }
 
 std::vector<SelfContactTerm::Pair> SelfContactTerm::candidates(const Vec& q0, const Vec& q1, double margin) const {
@@ -100,8 +122,8 @@ std::vector<SelfContactTerm::Pair> SelfContactTerm::candidates(const Vec& q0, co
       for (const Vec* q : {&q0, &q1})
         for (int c = 0; c < 3; ++c) {
           const double v = (*q)[surface_.node_x[node[i]] + c];
-          lo[c] = std::min(lo[c], v - 0.5 * margin);
-          hi[c] = std::max(hi[c], v + 0.5 * margin);
+          lo[c] = std::min(lo[c], v - radius_ - 0.5 * margin);
+          hi[c] = std::max(hi[c], v + radius_ + 0.5 * margin);
         }
     return Box(lo, hi, id);
   };
@@ -120,7 +142,8 @@ std::vector<SelfContactTerm::Pair> SelfContactTerm::candidates(const Vec& q0, co
                            });
   CGAL::box_self_intersection_d(edges.begin(), edges.end(), [&](const Box& b0, const Box& b1) {
     const auto &e0 = edges_[b0.info()], &e1 = edges_[b1.info()];
-    if (!excluded(e0.data(), 2, e1.data(), 2)) out.push_back({PairKind::edge_edge, {e0[0], e0[1], e1[0], e1[1]}});
+    if (!excluded(e0.data(), 2, e1.data(), 2) && !modelled_.count(edge_pair_key(e0, e1)))
+      out.push_back({PairKind::edge_edge, {e0[0], e0[1], e1[0], e1[1]}});
   });
   // A fixed order, whatever order the box intersection reports them in.
   std::sort(out.begin(), out.end(), [](const Pair& a, const Pair& b) {
@@ -171,9 +194,10 @@ double SelfContactTerm::admissible_fraction(const EvalContext& from, const EvalC
   double alpha = 1.0;
   for (const Pair& p : candidates(*from.q, *to.q, kApproachFraction * dhat_)) {
     const std::array<Vec3, 4> x0 = nodes(p, *from.q), x1 = nodes(p, *to.q);
-    const double d0 = closest_support(p.kind, x0).distance;
-    if (!(d0 > 0.0)) continue;  // a start in contact constrains nothing (never an accepted state)
-    alpha = std::min(alpha, first_approach(p.kind, x0, x1, d0, kApproachFraction * std::min(d0, dhat_)));
+    const double d0 = closest_support(p.kind, x0).distance, g0 = d0 - 2.0 * radius_;
+    if (!(g0 > 0.0)) continue;  // a start in contact constrains nothing (never an accepted state)
+    const double target = 2.0 * radius_ + kApproachFraction * std::min(g0, dhat_);
+    alpha = std::min(alpha, first_approach(p.kind, x0, x1, d0, target));
   }
   return alpha;
 }
@@ -187,9 +211,11 @@ void refuse_self_contact(const Scene& scene, const std::string& what) {
 }
 
 void add_self_contact(const Scene& scene, const ObstacleContactRule& rule, double node_spacing_m,
-                      ContactSurface surface, const Vec& q0, std::vector<std::unique_ptr<Term>>& terms) {
+                      ContactSurface surface, const Vec& q0, std::vector<std::unique_ptr<Term>>& terms,
+                      const ContactCapsules& capsules) {
   if (!scene.self_contact.enabled) return;
-  auto term = std::make_unique<SelfContactTerm>(std::move(surface), rule.activation_distance_m, rule.stiffness_N_per_m);
+  auto term = std::make_unique<SelfContactTerm>(std::move(surface), rule.activation_distance_m, rule.stiffness_N_per_m,
+                                                capsules);
   double closest = std::numeric_limits<double>::infinity();
   for (const auto& p : term->candidates(q0, q0, rule.activation_distance_m))
     closest = std::min(closest, term->distance(p, q0));
@@ -198,9 +224,12 @@ void add_self_contact(const Scene& scene, const ObstacleContactRule& rule, doubl
     std::ostringstream msg;
     msg << scene.source << ":" << scene.self_contact.line << ": self_contact.activation_distance_m: d̂ = " << dhat
         << " m; expected d̂ below " << bound << " m, "
-        << (closest < node_spacing_m ? "the distance at which two surface primitives that share no node start "
-                                       "(the cloth must not feel itself at rest)"
-                                     : "the node spacing");
+        << (closest >= node_spacing_m ? (capsules.radius > 0.0 ? "the yarn radius" : "the node spacing")
+            : capsules.radius > 0.0
+                ? "the gap at which two yarn segments that share no node and that the stitch terms do not model "
+                  "start (the knit must not feel itself at rest)"
+                : "the distance at which two surface primitives that share no node start "
+                  "(the cloth must not feel itself at rest)");
     throw std::invalid_argument(msg.str());
   }
   terms.push_back(std::move(term));

@@ -2,6 +2,9 @@
 // barriers (self_contact_pair.h) over the cloth's surface triangles, the pairs
 // found at every evaluation by CGAL's box intersection over the primitives'
 // boxes widened by d̂/2 on every side, and continuous collision over every step's move.
+// Yarn–yarn contact of a knit (§11.10) is the same term over capsules: yarn
+// segments of radius R whose edge–edge barrier acts on the gap d − 2R, with
+// the pairs other terms already model left out (ContactCapsules).
 //
 // The pairs couple nodes far apart in the mesh, which the model's fixed
 // sparsity pattern (docs/design.md §3.1) does not hold: this term has one
@@ -13,6 +16,7 @@
 #pragma once
 #include <array>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -33,9 +37,18 @@ struct ContactSurface {
   std::vector<int> node_x;
 };
 
+// Yarn segments between surface nodes, as capsules of radius R (docs/models.md
+// §11.10): their edge–edge pairs act on the gap d − 2R; the segment pairs in
+// `modelled` (indices into `segments`) are left out.
+struct ContactCapsules {
+  std::vector<std::array<int, 2>> segments;
+  double radius = 0.0;
+  std::vector<std::array<int, 2>> modelled;
+};
+
 class SelfContactTerm : public StencilTerm<3> {
  public:
-  SelfContactTerm(ContactSurface surface, double dhat, double kappa);
+  SelfContactTerm(ContactSurface surface, double dhat, double kappa, const ContactCapsules& capsules = {});
 
   std::string name() const override { return "self_contact"; }
   std::unique_ptr<Term> clone() const override { return std::make_unique<SelfContactTerm>(*this); }
@@ -48,7 +61,7 @@ class SelfContactTerm : public StencilTerm<3> {
 
   bool constrains_steps() const override { return true; }
   // Smallest over the pairs whose boxes swept over the move overlap of the
-  // fraction over which the pair stays farther than η·min(d(from), d̂), η = 0.1,
+  // fraction over which the pair's gap stays above η·min(g(from), d̂), η = 0.1,
   // by conservative advancement (docs/models.md §3.11.7).
   double admissible_fraction(const EvalContext& from, const EvalContext& to) const override;
 
@@ -57,10 +70,13 @@ class SelfContactTerm : public StencilTerm<3> {
     std::array<int, 4> node;  // surface nodes, ordered as in primitive_distance.h
   };
   // The pairs (not excluded) whose boxes, swept from q0 to q1 and widened by
-  // margin/2 on every side, overlap.
+  // R + margin/2 on every side, overlap.
   std::vector<Pair> candidates(const Vec& q0, const Vec& q1, double margin) const;
-  // Their distance at q.
+  // Their gap at q: the distance less the contact distance 2R (R = 0 for a surface).
   double distance(const Pair& p, const Vec& q) const;
+  // The pairs (not excluded) whose gap at q is negative: capsules that overlap.
+  long overlapping_pairs(const Vec& q) const;
+  double radius() const { return radius_; }
 
   static constexpr double kApproachFraction = 0.1;  // η
 
@@ -70,7 +86,8 @@ class SelfContactTerm : public StencilTerm<3> {
 
   ContactSurface surface_;
   std::vector<std::array<int, 2>> edges_;
-  double dhat_;
+  std::set<std::array<int, 4>> modelled_;  // edge pairs left out, each edge's nodes sorted, the pair sorted
+  double dhat_, radius_;
   SelfContactPairTerm kernel_;
   std::vector<Vec3> force_;
   std::vector<Mat3> block_;
@@ -78,9 +95,11 @@ class SelfContactTerm : public StencilTerm<3> {
 
 // Adds the self-contact term when scene.self_contact.enabled; throws
 // std::invalid_argument naming the scene's [self_contact] line when d̂ ≥ the
-// node spacing ℓ or a pair starts closer than d̂ (the cloth would feel itself at rest).
+// node spacing ℓ (for capsules: the length scale passed, R) or a pair starts
+// with a gap below d̂ (the cloth would feel itself at rest).
 void add_self_contact(const Scene& scene, const ObstacleContactRule& rule, double node_spacing_m,
-                      ContactSurface surface, const Vec& q0, std::vector<std::unique_ptr<Term>>& terms);
+                      ContactSurface surface, const Vec& q0, std::vector<std::unique_ptr<Term>>& terms,
+                      const ContactCapsules& capsules = {});
 
 // Throws std::invalid_argument naming the scene's [self_contact] line when it is
 // enabled: `what` needs the exact ∂f/∂q, of which self-contact assembles a bound.

@@ -1,8 +1,9 @@
 // Cloth–cloth contact barrier of one primitive pair (docs/models.md §3.11.7):
 // a point and a triangle, or two edges, of the cloth surface, with d their
 // distance (primitive_distance.h) and the barrier b of the obstacles
-// (§3.11.2, contact_barrier):
-//   E = κ b(d),  F = −κ b'(d) ∇d,  ∇_{xᵢ} d = λᵢ r/d,
+// (§3.11.2, contact_barrier) on the gap g = d − D, D the contact distance
+// (0 for a surface; 2R for two yarn capsules of radius R, §11.7):
+//   E = κ b(g),  F = −κ b'(g) ∇d,  ∇_{xᵢ} d = λᵢ r/d,
 // ∂F/∂x by forward-mode AD of F within the closest points' support.
 //
 // One element per pair; local stencil: the 4 nodes' positions (12 DoFs),
@@ -21,8 +22,8 @@ namespace wl {
 
 class SelfContactPairTerm : public StencilTerm<12> {
  public:
-  // d̂ > 0 [m], κ > 0 [N/m].
-  SelfContactPairTerm(double dhat, double kappa);
+  // d̂ > 0 [m], κ > 0 [N/m], contact distance D ≥ 0 [m].
+  SelfContactPairTerm(double dhat, double kappa, double contact_distance = 0.0);
   void clear();
   void add(const std::array<int, 12>& stencil, PairKind kind);
 
@@ -32,7 +33,7 @@ class SelfContactPairTerm : public StencilTerm<12> {
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
  private:
-  double dhat_, kappa_;
+  double dhat_, kappa_, contact_distance_;
   std::vector<PairKind> kind_;
 };
 

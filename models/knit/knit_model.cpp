@@ -15,6 +15,7 @@
 #include "models/knit/terms/stitch_length.h"
 #include "models/knit/terms/stitch_roll.h"
 #include "models/knit/terms/yarn_compression.h"
+#include "models/knit/yarn_contact.h"
 #include "models/scene/parameter_keys.h"
 #include "models/yarn/terms/bending.h"
 #include "models/yarn/terms/gravity.h"
@@ -121,6 +122,7 @@ KnitModel::KnitModel(const Scene& scene, bool tile, const std::array<double, 2>&
   add_compression();
   if (!tile_) {
     apply_pose();
+    add_yarn_contact();
     if (auto handles = knit_handles(graph_, scene_, q0_)) terms_.push_back(std::move(handles));
     fixed_ = knit_pinned_dofs(graph_, scene_);
   }
@@ -340,12 +342,7 @@ void KnitModel::add_compression() {
   }
   stitch.finish(terms_);
 
-  std::vector<YarnPiece> all;
-  for (const Segment& s : segments_) {
-    const auto& visits = graph_.yarns()[s.yarn].visits;
-    all.push_back({visits[s.k0].node, visits[s.k1].node, s.dx0, s.dx1});
-  }
-  const std::vector<YarnPiece> pieces = unique_pieces(all);
+  const std::vector<YarnPiece> pieces = yarn_pieces();
   std::vector<Vec3> x;
   for (const KnitNode& n : graph_.nodes()) x.push_back(n.x);
   std::vector<Vec3> images{Vec3::Zero()};
@@ -370,6 +367,33 @@ void KnitModel::add_compression() {
     pairs.add_shift(b.dx1 + p.shift);
   }
   pairs.finish(terms_);
+}
+
+// The yarn pieces: every segment once (compression_pairs.h), with its image shifts in the tile.
+std::vector<YarnPiece> KnitModel::yarn_pieces() const {
+  std::vector<YarnPiece> all;
+  for (const Segment& s : segments_) {
+    const auto& visits = graph_.yarns()[s.yarn].visits;
+    all.push_back({visits[s.k0].node, visits[s.k1].node, s.dx0, s.dx1});
+  }
+  return unique_pieces(all);
+}
+
+// Yarn–yarn contact (docs/models.md §11.10) between the open cloth's pieces,
+// the compression's pairs left out (yarn_contact.h); built whether [self_contact] is on or not,
+// for the intersection count, and added to the terms when it is.
+void KnitModel::add_yarn_contact() {
+  const std::vector<YarnPiece> pieces = yarn_pieces();
+  std::vector<Vec3> x;
+  for (const KnitNode& n : graph_.nodes()) x.push_back(n.x);
+  const double radius = scene_.radius_m;
+  const std::vector<PiecePair> compressed =
+      compression_pairs(x, pieces, {Vec3::Zero()}, knit_compression_cutoff(graph_.layout(), radius));
+  const ObstacleContactRule rule = knit_contact_rule(scene_, graph_, pieces);
+  const KnitContactSet set = knit_contact_set(graph_, pieces, compressed, radius);
+  capsules_ = std::make_shared<const SelfContactTerm>(set.surface, rule.activation_distance_m, rule.stiffness_N_per_m,
+                                                      set.capsules);
+  add_self_contact(scene_, rule, radius, set.surface, q0_, terms_, set.capsules);
 }
 
 std::vector<int> KnitModel::gauge_dofs() const {

@@ -9,9 +9,13 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "models/common/intersection_count.h"
+#include "models/common/self_contact.h"
 #include "models/core/sliding_coordinates.h"
 #include "models/core/term_model.h"
+#include "models/knit/compression_pairs.h"
 #include "models/knit/knit_graph.h"
 #include "models/scene/scene.h"
 
@@ -34,7 +38,7 @@ inline double knit_compression_cutoff(const KnitLayout& L, double radius) {
   return 2.0 * radius + 0.5 * std::min(L.wale_spacing, L.course_spacing);
 }
 
-class KnitModel : public TermModel, public SlidingCoordinates {
+class KnitModel : public TermModel, public SlidingCoordinates, public IntersectionCount {
  public:
   // The whole cloth of a knit scene (scene.knit set), at the tiled rest shape.
   explicit KnitModel(const Scene& scene);
@@ -53,6 +57,10 @@ class KnitModel : public TermModel, public SlidingCoordinates {
   // A yarn segment whose sliding coordinates meet or cross (Δu ≤ 0).
   std::string invalid_state(const Vec& q) const override;
   std::map<std::string, std::string> describe() const override;
+  // IntersectionCount: the pairs of yarn pieces that the contact filter keeps
+  // whose capsules overlap (gap d − 2R < 0; docs/models.md §11.10), with or without the contact on.
+  std::string intersection_column() const override { return "intersecting_segment_pairs"; }
+  long intersecting_pairs(const Vec& q) const override { return capsules_ ? capsules_->overlapping_pairs(q) : 0; }
 
   const KnitGraph& graph() const { return graph_; }
   // Position of node k in state q, and a coordinate (DoF or constant).
@@ -80,6 +88,8 @@ class KnitModel : public TermModel, public SlidingCoordinates {
   void add_bending();
   void add_stitch_terms();
   void add_compression();
+  void add_yarn_contact();
+  std::vector<YarnPiece> yarn_pieces() const;
   struct Segment {
     int yarn, k0, k1;  // visits
     Vec3 dx0, dx1;     // image shifts of the two ends
@@ -91,6 +101,8 @@ class KnitModel : public TermModel, public SlidingCoordinates {
   KnitGraph graph_;
   std::vector<Segment> segments_;
   std::vector<std::vector<std::pair<int, int>>> visit_of_;  // per node, per slot: (yarn, visit)
+  // The yarn–yarn contact's pairs (open cloth), for the intersection count whether the contact is on or not.
+  std::shared_ptr<const SelfContactTerm> capsules_;
 };
 
 }  // namespace wl

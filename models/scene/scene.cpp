@@ -27,7 +27,8 @@
 //     "default" is YarnType{} of scene.h unless defined here.
 //   [knit]                   knit scenes only (docs/models.md §11)
 //     roll_stiffness_N, stitch_length_stiffness_N, compression_stiffness_N_per_m   ≥ 0
-//   A knit scene takes no [wind], [[obstacles]] or [self_contact] (not supported yet); its [[pins]] and
+//   A knit scene takes no [wind] or [[obstacles]] (not supported yet); its [self_contact] is the
+//   yarn–yarn contact (docs/models.md §11.7, activation distance below the yarn radius); its [[pins]] and
 //   [[handles]] name stitch contacts: node = [i, j], 0 ≤ i ≤ courses (contact row), 0 ≤ j < 2·wales.
 //   Its [fem] (the continuum on the contact grid, docs/models.md §11.9): stride dividing 2·wales − 1 and
 //   courses; no mesh_file, border_strip, grid_line_bending, yarn_node_mass or areal_density_kg_per_m2.
@@ -469,7 +470,7 @@ void read_knit(TableReader& top, Scene& s) {
     k->finish();
   }
   if (!s.knit) return;
-  for (const char* table : {"wind", "obstacles", "self_contact"})
+  for (const char* table : {"wind", "obstacles"})
     if (const toml::node* n = top.table().get(table))
       top.source().fail(line_of(*n), table, "[" + std::string(table) + "]",
                         "no [" + std::string(table) + "] in a knit scene (not supported for knits yet)");
