@@ -29,7 +29,7 @@ fi
 # The whole suite: the gtest program itself, split into one shard per core
 # (GTEST_TOTAL_SHARDS), rather than ctest's one process per test, whose start-up
 # under the sanitizers costs more than most tests. A shard's log is printed in
-# full when it fails.
+# full when it fails. Then the ctest tests of tests/fuzz/.
 skip=$(grep -v '^#' ../tests/sanitize_skip.txt | grep -v '^$' | paste -sd':')
 shards=$(nproc)
 pids=()
@@ -49,4 +49,6 @@ for ((k = 0; k < shards; ++k)); do
     failed=1
   fi
 done
+# The command line's fuzz (tests/fuzz/) drives the sanitized executable.
+ctest --output-on-failure -R '^fuzz\.' || failed=1
 exit $failed
