@@ -15,7 +15,7 @@ import os
 # appended. A listed study without a Snakefile yet is shown as not yet run.
 STUDY_ORDER = ["main_job", "calibration", "diagnosis", "error_budget", "trajectory_fit", "cusick", "obstacles",
                "cantilever", "slide_pull", "knits", "pattern_study", "stability", "work_precision", "fidelity",
-               "speed", "determinism"]
+               "speed", "determinism", "published_code"]
 STUDIES_FOUND = sorted(os.path.basename(os.path.dirname(p)) for p in glob.glob("experiments/*/Snakefile"))
 STUDIES_ALL = STUDY_ORDER + [s for s in STUDIES_FOUND if s not in STUDY_ORDER]
 
