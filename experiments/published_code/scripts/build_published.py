@@ -42,6 +42,19 @@ def run(command, cwd=None):
     return result.stdout
 
 
+def exported_commit(scratch):
+    """The commit an earlier build exported into scratch (provenance.txt), or None."""
+    try:
+        with open(os.path.join(scratch, "provenance.txt")) as note:
+            for line in note:
+                key, _, value = line.strip().partition(" ")
+                if key == "commit":
+                    return value
+    except OSError:
+        return None
+    return None
+
+
 def export_sources(source, commit, scratch):
     """Exports src/ of the given commit into scratch/src; returns the full commit hash."""
     if os.path.isdir(source) and os.path.isfile(os.path.join(source, "HEAD")):
@@ -51,6 +64,8 @@ def export_sources(source, commit, scratch):
         if not os.path.isdir(git_dir):
             run(["git", "clone", "--bare", "--filter=blob:limit=1m", source, git_dir])
     full = run(["git", f"--git-dir={git_dir}", "rev-parse", f"{commit}^{{commit}}"]).strip()
+    if exported_commit(scratch) == full and os.path.isdir(os.path.join(scratch, "src")):
+        return full  # already exported (and adapted): keep the files and their times, so nothing recompiles
     archive = subprocess.run(["git", f"--git-dir={git_dir}", "archive", full, "src"], capture_output=True)
     if archive.returncode != 0:
         fail(f"git archive of {full} failed: {archive.stderr.decode()[-2000:]}", 1)
