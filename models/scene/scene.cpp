@@ -528,6 +528,25 @@ void read_time(TableReader& top, Scene& s) {
   top.source().fail(line != s.key_lines.end() ? line->second : t ? t->line() : 1, bad->key, value, bad->expected);
 }
 
+// [compat] (docs/published_code.md): the published code's convention where the lab differs,
+// one key per difference. The exact contact Jacobian (§3.6.1) is derived for the lab's F_n only.
+void read_compat(TableReader& top, Scene& s) {
+  auto c = top.subtable("compat");
+  if (!c) return;
+  int stretch = s.compat.normal_force_on_centre_lines ? 1 : 0;
+  if (c->read_choice("normal_force_stretch", stretch, {"crimped", "centre_line"}))
+    s.compat.normal_force_on_centre_lines = stretch == 1;
+  int diagonals = s.compat.wind_alternating_diagonals ? 1 : 0;
+  if (c->read_choice("wind_diagonals", diagonals, {"one", "alternating"}))
+    s.compat.wind_alternating_diagonals = diagonals == 1;
+  const toml::node* key = c->table().get("normal_force_stretch");
+  c->finish();
+  if (s.compat.normal_force_on_centre_lines && s.exact_contact_jacobian)
+    top.source().fail(line_of(*key), c->key_path("normal_force_stretch"), "\"centre_line\"",
+                      "\"crimped\" while time.exact_contact_jacobian = true (the exact derivatives of F_n "
+                      "exist for the crimped stretch only)");
+}
+
 void read_terms(TableReader& top, Scene& s) {
   auto t = top.subtable("terms");
   if (!t) return;
@@ -576,7 +595,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   TableReader top(src, root, "");
   // Unknown tables first: a misspelt table name is the likeliest error.
   top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "damping", "time",
-               "terms", "fem", "obstacles", "obstacle_contact", "self_contact", "knit", "measures"});
+               "terms", "compat", "fem", "obstacles", "obstacle_contact", "self_contact", "knit", "measures"});
   top.finish();
   const auto yarn_defs = read_yarn_types(top);
   read_cloth(top, s, yarn_defs);
@@ -588,6 +607,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   read_loads(top, s);
   read_time(top, s);
   read_terms(top, s);
+  read_compat(top, s);
   scene_detail::read_obstacles(top, s);
   scene_detail::read_measures(top, s);
   return s;

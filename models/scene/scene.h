@@ -163,6 +163,19 @@ struct TermSwitches {
   bool stretch_projected_step_hessian = false;
 };
 
+// [compat]: switches to a convention of the authors' published code of Gong et al. 2022, one
+// per difference (docs/published_code.md); every default is the lab's model (docs/models.md).
+struct CompatSettings {
+  // The stretch part of the contact normal force F_n evaluated on the actual centre lines and the
+  // outer ring left uncrimped, bending alone on the crimped copies (docs/published_code.md rows 1–2);
+  // false: stretch and bending on the crimped copies of every node (docs/models.md §3.6, §5.3).
+  bool normal_force_on_centre_lines = false;
+  // Wind triangles split each grid cell along (i, j)–(i+1, j+1) when i + j is even and along
+  // (i+1, j)–(i, j+1) when it is odd (docs/published_code.md row 13); false: every cell along
+  // (i, j)–(i+1, j+1) (docs/models.md §3.9).
+  bool wind_alternating_diagonals = false;
+};
+
 struct Scene {
   std::string source;  // file it came from
   std::string text;    // its text, read once at load (what the run simulates)
@@ -226,6 +239,7 @@ struct Scene {
   bool exact_contact_jacobian = false;
 
   TermSwitches terms;
+  CompatSettings compat;
   FemSettings fem;
   std::vector<ObstacleSpec> obstacles;
   ObstacleContactParams obstacle_contact;

@@ -34,13 +34,15 @@ double coordinate(const Vec& q, const Vec& constants, int index) {
 }  // namespace
 
 ContactNormals::ContactNormals(const WovenGrid& grid, std::vector<double> warp_ks, std::vector<double> warp_kb,
-                               std::vector<double> weft_ks, std::vector<double> weft_kb, double radius)
+                               std::vector<double> weft_ks, std::vector<double> weft_kb, double radius,
+                               NormalForceStretch stretch)
     : grid_(grid),
       warp_ks_(std::move(warp_ks)),
       warp_kb_(std::move(warp_kb)),
       weft_ks_(std::move(weft_ks)),
       weft_kb_(std::move(weft_kb)),
-      R_(radius) {
+      R_(radius),
+      stretch_(stretch) {
   if (grid_.nu() < 2 || grid_.nv() < 2) {
     std::ostringstream msg;
     msg << "ContactNormals: grid of " << grid_.nu() << " x " << grid_.nv() << " nodes, expected at least 2 x 2";
@@ -80,6 +82,7 @@ void ContactNormals::compute(const Vec& q) {
     v_[id] = coordinate(q, constants, d.v);
   }
 
+  const bool on_centre_lines = stretch_ == NormalForceStretch::centre_lines;
   // Normals: best-fit plane of the node and its grid neighbours (docs/models.md §3.6).
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i) {
@@ -112,17 +115,22 @@ void ContactNormals::compute(const Vec& q) {
       eig_val_[id] = eig.eigenvalues();
       eig_sign_[id] = static_cast<double>(grid_.sign(i, j)) * flip;
       for (int k = 0; k < 5; ++k) fit_points_[id][k] = use[k] ? pts[k] : -1;
-      xw_[id] = x_[id] - R_ * n_[id];  // crimped warp copy (docs/models.md §5.3)
-      xf_[id] = x_[id] + R_ * n_[id];  // crimped weft copy
+      // Crimped copies (docs/models.md §5.3); the published code leaves the ring where it is.
+      const double offset = on_centre_lines && !grid_.interior(i, j) ? 0.0 : R_;
+      xw_[id] = x_[id] - offset * n_[id];  // crimped warp copy
+      xf_[id] = x_[id] + offset * n_[id];  // crimped weft copy
       fu_[id].setZero();
       fv_[id].setZero();
     }
 
-  // F^u: stretch and bending of every warp on its crimped copy, accumulated per node.
+  // F^u: stretch and bending of every warp on its crimped copy (stretch on the centre line with
+  // centre_lines), accumulated per node.
+  const std::vector<Vec3>& warp_stretch_at = on_centre_lines ? x_ : xw_;
+  const std::vector<Vec3>& weft_stretch_at = on_centre_lines ? x_ : xf_;
   for (int j = 0; j < nv; ++j) {
     for (int i = 0; i + 1 < nu; ++i) {
       const int a = grid_.node(i, j), b = grid_.node(i + 1, j);
-      const auto f = StretchTerm::local_force(xw_[a], xw_[b], u_[a], u_[b], warp_ks_[j]);
+      const auto f = StretchTerm::local_force(warp_stretch_at[a], warp_stretch_at[b], u_[a], u_[b], warp_ks_[j]);
       fu_[a] += f.segment<3>(0);
       fu_[b] += f.segment<3>(3);
     }
@@ -138,7 +146,7 @@ void ContactNormals::compute(const Vec& q) {
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j + 1 < nv; ++j) {
       const int a = grid_.node(i, j), b = grid_.node(i, j + 1);
-      const auto f = StretchTerm::local_force(xf_[a], xf_[b], v_[a], v_[b], weft_ks_[i]);
+      const auto f = StretchTerm::local_force(weft_stretch_at[a], weft_stretch_at[b], v_[a], v_[b], weft_ks_[i]);
       fv_[a] += f.segment<3>(0);
       fv_[b] += f.segment<3>(3);
     }

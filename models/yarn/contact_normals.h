@@ -30,13 +30,19 @@
 
 namespace wl {
 
+// Where the stretch part of F^u and F^v is evaluated: on the crimped copies (the lab's model,
+// docs/models.md §5.3), or on the actual centre lines with the outer ring left uncrimped and only
+// bending on the crimped copies (the authors' published code, docs/published_code.md rows 1–2).
+enum class NormalForceStretch { crimped_copies, centre_lines };
+
 class ContactNormals {
  public:
   // warp_* indexed by warp j (size grid.nv()), weft_* by weft i (size grid.nu());
   // k_s = Y·πR² (N), k_b = B·πR²; radius R (m). Throws std::invalid_argument on
   // wrong sizes, negative/non-finite stiffness or non-positive radius.
   ContactNormals(const WovenGrid& grid, std::vector<double> warp_ks, std::vector<double> warp_kb,
-                 std::vector<double> weft_ks, std::vector<double> weft_kb, double radius);
+                 std::vector<double> weft_ks, std::vector<double> weft_kb, double radius,
+                 NormalForceStretch stretch = NormalForceStretch::crimped_copies);
 
   // q: the full state (size grid.num_dofs()); frozen u/v come from grid.constants().
   void compute(const Vec& q);
@@ -47,7 +53,8 @@ class ContactNormals {
   const std::vector<Vec3>& warp_force() const { return fu_; }
   const std::vector<Vec3>& weft_force() const { return fv_; }
 
-  // After compute(q): ∂F_n/∂q of every node (zero where F_n = 0). The entries
+  // After compute(q): ∂F_n/∂q of every node (crimped_copies only: throws
+  // std::invalid_argument for centre_lines) (zero where F_n = 0). The entries
   // of a node's row are always the same DoFs in the same order (zeros kept),
   // so a caller can map them to matrix slots once.
   struct GradientRow {
@@ -68,6 +75,7 @@ class ContactNormals {
   WovenGrid grid_;
   std::vector<double> warp_ks_, warp_kb_, weft_ks_, weft_kb_;
   double R_;
+  NormalForceStretch stretch_;
   std::vector<Vec3> x_, n_, xw_, xf_, fu_, fv_;
   std::vector<double> u_, v_, fn_;
   // Per node: eigenvectors (columns, ascending eigenvalues) and eigenvalues of

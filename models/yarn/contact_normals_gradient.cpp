@@ -26,6 +26,10 @@ void ContactNormals::compute_gradient(const Vec& q) {
     msg << "ContactNormals::compute_gradient: state has " << q.size() << " entries, expected " << grid_.num_dofs();
     throw std::invalid_argument(msg.str());
   }
+  if (stretch_ != NormalForceStretch::crimped_copies)
+    throw std::invalid_argument(
+        "ContactNormals::compute_gradient: the exact derivatives of F_n exist for the stretch on the crimped "
+        "copies only (compat.normal_force_stretch = \"crimped\")");
   const int nu = grid_.nu(), nv = grid_.nv(), N = grid_.num_nodes();
   grad_.resize(N);
   parts_.assign(N, StiffnessParts{});

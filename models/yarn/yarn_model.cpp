@@ -46,7 +46,10 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   const ContactParams& c = scene.contact;
   const bool gong_shear = on.shear && c.shear_model == ContactParams::ShearModel::gong;
   const bool friction = on.friction && scene.sliding;
-  if (gong_shear || friction) normals_.emplace(grid_, warp_.ks, warp_.kb, weft_.ks, weft_.kb, scene.radius_m);
+  const NormalForceStretch normal_force_stretch =
+      scene.compat.normal_force_on_centre_lines ? NormalForceStretch::centre_lines : NormalForceStretch::crimped_copies;
+  if (gong_shear || friction)
+    normals_.emplace(grid_, warp_.ks, warp_.kb, weft_.ks, weft_.kb, scene.radius_m, normal_force_stretch);
   if (on.inertia) add_inertia();
   if (on.stretch) add_stretch();
   if (on.gravity) add_gravity();
@@ -258,8 +261,14 @@ void YarnModel::add_wind() {
     for (int i = 0; i + 1 < grid_.nu(); ++i) {
       const int n00 = grid_.node(i, j), n10 = grid_.node(i + 1, j), n11 = grid_.node(i + 1, j + 1),
                 n01 = grid_.node(i, j + 1);
-      tri(n00, n10, n11);
-      tri(n00, n11, n01);
+      // docs/models.md §3.9; the published code alternates the diagonal (docs/published_code.md row 13).
+      if (scene_.compat.wind_alternating_diagonals && (i + j) % 2 == 1) {
+        tri(n00, n10, n01);
+        tri(n10, n11, n01);
+      } else {
+        tri(n00, n10, n11);
+        tri(n00, n11, n01);
+      }
     }
   terms_.push_back(std::move(t));
 }

@@ -27,34 +27,8 @@ namespace {
 
 using test::Blocks;
 using test::dof_kinds;
+using test::frozen_force;
 using test::kDofKind;
-
-// The model's force with every auxiliary quantity (F_n, F_u, anchors) as the
-// last model.evaluate left it: the terms evaluated element by element, without
-// the model's update of F_n or the terms' prepare().
-Vec frozen_force(const YarnModel& m, const Vec& q, const Vec& v, bool inertia_only = false) {
-  Vec f = Vec::Zero(m.num_dofs());
-  std::vector<double> ql, vl, fl;
-  for (const auto& term : m.terms()) {
-    if (inertia_only && !term->provides_mass()) continue;
-    const int n = term->stencil_size();
-    ql.resize(n);
-    vl.resize(n);
-    fl.resize(n);
-    for (int e = 0; e < term->num_elements(); ++e) {
-      const auto s = term->stencil(e);
-      for (int a = 0; a < n; ++a) {
-        ql[a] = is_dof(s[a]) ? q[s[a]] : m.constants()[constant_slot(s[a])];
-        vl[a] = is_dof(s[a]) ? v[s[a]] : 0.0;
-      }
-      std::fill(fl.begin(), fl.end(), 0.0);
-      term->evaluate(e, ql.data(), vl.data(), ElementOutput{fl.data()});
-      for (int a = 0; a < n; ++a)
-        if (is_dof(s[a])) f[s[a]] += fl[a];
-    }
-  }
-  return f;
-}
 
 class ShippedScene : public ::testing::Test {
  protected:
