@@ -203,8 +203,12 @@ TEST(CompatModel, JacobiansMatchDifferencesOfTheFrozenForce) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) {
       const std::string block = std::string(test::kDofKind[r]) + "-" + test::kDofKind[c];
-      if (dq.ref[r][c] > 0.0) EXPECT_LT(dq.relative(r, c), 1e-6) << "df/dq " << block;
-      if (dv.ref[r][c] > 0.0) EXPECT_LT(dv.relative(r, c), 1e-6) << "df/dv " << block;
+      if (dq.ref[r][c] > 0.0) {
+        EXPECT_LT(dq.relative(r, c), 1e-6) << "df/dq " << block;
+      }
+      if (dv.ref[r][c] > 0.0) {
+        EXPECT_LT(dv.relative(r, c), 1e-6) << "df/dv " << block;
+      }
     }
   EXPECT_GT(dq.ref[0][0], 0.0);
   EXPECT_GT(dq.ref[1][0], 0.0);
