@@ -239,8 +239,7 @@ void written_run(const Scene& scene, const RunOptions& options, const std::strin
     if (hold_frames) w.held_frames.push_back(f);
     else if (options.on_frame) options.on_frame(f);
     if (files.obstacle_series) files.obstacle_series->add(model.obstacle_frame(f.time));
-    if (files.intersections)
-      files.intersections->row({f.time, double(count_intersections(model, integrator.q(), f))});
+    if (files.intersections) files.intersections->row({f.time, double(count_intersections(model, integrator.q(), f))});
     last_frame = std::move(f);
   };
   integrator.initialize(model, 0.0, model.initial_q(), model.initial_v(), iopt);
