@@ -30,6 +30,8 @@ void install_interrupt_handlers() {
 
 int interrupt_signal() { return g_signal; }
 
+void clear_interrupt_signal() { g_signal = 0; }
+
 std::string interrupted_message(int signal) {
   return std::string("interrupted by ") + (signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal");
 }
@@ -41,7 +43,7 @@ void throw_if_interrupted() {
 }
 
 InterruptScope::InterruptScope() {
-  g_signal = 0;
+  clear_interrupt_signal();
   const struct sigaction sa = recording_action();
   sigaction(SIGINT, &sa, &host_int_);
   sigaction(SIGTERM, &sa, &host_term_);

@@ -13,6 +13,8 @@ namespace wl {
 void install_interrupt_handlers();
 // The signal received since install_interrupt_handlers() (SIGINT, SIGTERM), or 0.
 int interrupt_signal();
+// Forgets the recorded signal (a host process that goes on after an interrupted run).
+void clear_interrupt_signal();
 // What a record says of a run the signal ended: "interrupted by SIGINT",
 // "interrupted by SIGTERM" ("interrupted by a signal" for any other).
 std::string interrupted_message(int signal);

@@ -53,6 +53,8 @@ void expect_interrupted_record(const fs::path& out, const RunReport& rep, const 
 class RunInterrupt : public ::testing::Test {
  protected:
   Scene scene(double duration_s) { return parse_scene(test::hanging_cloth_toml(5, duration_s), "cloth.toml"); }
+  // The signal each test raises is forgotten after it: the tests after it run in the same process.
+  void TearDown() override { clear_interrupt_signal(); }
   InterruptScope handlers_;  // records SIGINT and SIGTERM for this test, cleared first
   test::ScratchDir dir_;
 };
