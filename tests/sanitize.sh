@@ -26,12 +26,13 @@ cd build-sanitize
 if [ $# -gt 0 ]; then
   exec ctest --output-on-failure -j"$(nproc)" "$@"
 fi
-# The whole suite: the gtest program itself, split into one shard per core
+# The whole suite: the gtest program itself, split into two shards per core
 # (GTEST_TOTAL_SHARDS), rather than ctest's one process per test, whose start-up
-# under the sanitizers costs more than most tests. A shard's log is printed in
-# full when it fails. Then the ctest tests of tests/fuzz/.
+# under the sanitizers costs more than most tests; more shards than cores even
+# out the shards' unequal lengths. A shard's log is printed in full when it
+# fails. The ctest tests of tests/fuzz/ run beside the shards.
 skip=$(grep -v '^#' ../tests/sanitize_skip.txt | grep -v '^$' | paste -sd':')
-shards=$(nproc)
+shards=$((2 * $(nproc)))
 pids=()
 for ((k = 0; k < shards; ++k)); do
   GTEST_TOTAL_SHARDS=$shards GTEST_SHARD_INDEX=$k \
@@ -39,6 +40,9 @@ for ((k = 0; k < shards; ++k)); do
     >"shard_$k.log" 2>&1 &
   pids+=($!)
 done
+# The command line's fuzz (tests/fuzz/) drives the sanitized executable.
+ctest --output-on-failure -R '^fuzz\.' >fuzz.log 2>&1 &
+fuzz_pid=$!
 failed=0
 for ((k = 0; k < shards; ++k)); do
   if wait "${pids[$k]}"; then
@@ -49,6 +53,6 @@ for ((k = 0; k < shards; ++k)); do
     failed=1
   fi
 done
-# The command line's fuzz (tests/fuzz/) drives the sanitized executable.
-ctest --output-on-failure -R '^fuzz\.' || failed=1
+if ! wait "$fuzz_pid"; then failed=1; fi
+cat fuzz.log
 exit $failed
