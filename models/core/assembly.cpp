@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "models/core/sparsity_pattern.h"
 #include "models/core/step_stiffness.h"
 
 #ifdef _OPENMP
@@ -94,33 +95,7 @@ void add_block_product(bool symmetric, int n, const int* s, const double* block,
 }  // namespace
 
 Assembly::Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std::pair<int, int>>& extra)
-    : num_dofs_(num_dofs) {
-  std::vector<Eigen::Triplet<double, int>> triplets;
-  for (int i = 0; i < num_dofs; ++i) triplets.emplace_back(i, i, 0.0);
-  for (const auto& [r, c] : extra) {
-    if (r < 0 || c < 0 || r >= num_dofs || c >= num_dofs)
-      throw std::logic_error("assembly: extra pattern entry out of range");
-    triplets.emplace_back(r, c, 0.0);
-  }
-  for (Term* t : terms) {
-    for (int e = 0; e < t->num_elements(); ++e) {
-      auto s = t->stencil(e);
-      if (static_cast<int>(s.size()) != t->stencil_size())
-        throw std::logic_error("assembly: stencil size mismatch in term '" + t->name() + "'");
-      for (int a : s)
-        for (int b : s)
-          if (is_dof(a) && is_dof(b)) {
-            if (a >= num_dofs || b >= num_dofs)
-              throw std::logic_error("assembly: DoF index out of range in term '" + t->name() + "'");
-            triplets.emplace_back(a, b, 0.0);
-          }
-    }
-  }
-  pattern_.resize(num_dofs, num_dofs);
-  pattern_.setFromTriplets(triplets.begin(), triplets.end());
-  pattern_.makeCompressed();
-  for (int k = 0; k < pattern_.nonZeros(); ++k) pattern_.valuePtr()[k] = 0.0;
-
+    : num_dofs_(num_dofs), pattern_(build_sparsity_pattern(num_dofs, terms, extra)) {
   const int* outer = pattern_.outerIndexPtr();
   const int* inner = pattern_.innerIndexPtr();
   auto slot_of = [&](int row, int col) {

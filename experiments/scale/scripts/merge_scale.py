@@ -5,7 +5,9 @@ every cell (scale.csv), the amg route against the gmres route at each size
 
 Each cell is the CSV row `weavelab_bench --scale` printed (file <size>_<solver>.csv)
 beside the `/usr/bin/time -v` report of its process (<size>_<solver>.time);
---runs lists the reports of whole runs as <size>_<solver>=PATH."""
+--runs lists the reports of whole runs as <size>_<solver>=PATH. A cell the
+CPU limit stopped (SIGXCPU: an empty CSV, the report saying so) is a row with
+its status, the CPU time and peak it reached, and no step figures."""
 import argparse
 import csv
 import os
@@ -27,15 +29,35 @@ def max_rss_mb(path):
     return int(match.group(1)) * 1024 / 1e6
 
 
+def cpu_s(path):
+    """User + system CPU time of a /usr/bin/time -v report [s]."""
+    with open(path) as f:
+        text = f.read()
+    times = [re.search(rf"{kind} time \(seconds\): ([0-9.]+)", text) for kind in ("User", "System")]
+    if not all(times):
+        fail(f"{path}: no 'User time' or 'System time' line (not a /usr/bin/time -v report?)")
+    return sum(float(t.group(1)) for t in times)
+
+
+def stopped_by_cpu_limit(path):
+    """Whether the report says the command ended on SIGXCPU (the cell's CPU limit)."""
+    with open(path) as f:
+        return "Command terminated by signal 24" in f.read()
+
+
 def read_cell(path):
     name = os.path.basename(path)[:-len(".csv")]
     size, _, solver = name.partition("_")
+    report = path[:-len(".csv")] + ".time"
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
+    if not rows and stopped_by_cpu_limit(report):
+        return {"size": size, "solver": solver, "status": f"stopped by the CPU limit after {cpu_s(report):.0f} s CPU",
+                "max_rss_mb": f"{max_rss_mb(report):.1f}"}
     if len(rows) != 1:
         fail(f"{path}: expected one row from weavelab_bench --scale, got {len(rows)}")
-    row = dict(rows[0], size=size, solver=solver)
-    row["max_rss_mb"] = f"{max_rss_mb(path[:-len('.csv')] + '.time'):.1f}"
+    row = dict(rows[0], size=size, solver=solver, status="ok")
+    row["max_rss_mb"] = f"{max_rss_mb(report):.1f}"
     row["bytes_per_dof"] = f"{float(row['peak_mb']) * 1e6 / int(row['dofs']):.0f}"
     return row
 
@@ -53,7 +75,7 @@ def label_order(label):
 
 
 def ratios(cells):
-    by = {(c["size"], c["solver"]): c for c in cells}
+    by = {(c["size"], c["solver"]): c for c in cells if c["status"] == "ok"}
     out = []
     for size in sorted({c["size"] for c in cells}, key=label_order):
         ref, other = by.get((size, REFERENCE)), by.get((size, OTHER))
@@ -72,8 +94,9 @@ def ratios(cells):
 
 def breakdown(cells, runs):
     """The largest woven size's peak split by stage, one column per solver [MB]."""
-    largest = max(int(c["size"]) for c in cells if c["size"].isdigit())
-    chosen = [c for c in cells if c["size"] == str(largest)]
+    measured = [c for c in cells if c["status"] == "ok"]
+    largest = max(int(c["size"]) for c in measured if c["size"].isdigit())
+    chosen = [c for c in measured if c["size"] == str(largest)]
     f = lambda c, k: float(c[k])  # noqa: E731
     parts = [
         ("process at start (program and libraries)", lambda c: f(c, "rss_start_mb")),
@@ -120,7 +143,7 @@ def main():
         if not path:
             fail(f"--runs: got '{item}', expected SIZE_SOLVER=PATH")
         runs[(size, solver)] = path
-    columns = ["size", "solver", "requested", "dofs", "nnz", "steps", "step_ms", "step_cpu_ms", "krylov_per_step",
+    columns = ["size", "solver", "status", "requested", "dofs", "nnz", "steps", "step_ms", "step_cpu_ms", "krylov_per_step",
                "factorizations_per_step", "rss_start_mb", "peak_model_mb", "rss_model_mb", "rss_initialized_mb", "rss_end_mb",
                "peak_mb", "max_rss_mb", "solver_matrices_mb", "preconditioner_mb", "krylov_mb", "scatter_plans_mb",
                "bytes_per_dof",

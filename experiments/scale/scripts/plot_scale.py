@@ -2,7 +2,8 @@
 """The scale study's figure: median step time (wall, and the process's CPU
 time: the machine may be shared) and resident size (the peak, and what is held
 after the steps) against the DoFs of the
-woven cloth, one line per step solver (log-log). Usage: plot_scale.py scale.csv out.png"""
+woven cloth, one line per step solver (log-log); cells the CPU limit stopped
+are left out. Usage: plot_scale.py scale.csv out.png"""
 import csv
 import os
 import sys
@@ -20,7 +21,7 @@ def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     with open(sys.argv[1], newline="") as f:
-        rows = [r for r in csv.DictReader(f) if r["size"].isdigit()]
+        rows = [r for r in csv.DictReader(f) if r["size"].isdigit() and r["status"] == "ok"]
     fig, (ax_t, ax_m) = plt.subplots(1, 2, figsize=(10, 4))
     for solver in sorted({r["solver"] for r in rows}):
         mine = sorted((r for r in rows if r["solver"] == solver), key=lambda r: int(r["dofs"]))
