@@ -150,7 +150,11 @@ void KnitModel::apply_rest_shape() {
     const int tr = ((r % tile_courses) + tile_courses) % tile_courses, tc = c % tile_wales;
     const int tn = ((tr * tile_wales + tc) * 2 + s) * 2 + end;
     const KnitNode& node = graph_.node(n);
-    q0_.segment<3>(node.x_dof) += rest.dx[tn];
+    // The copy (Δr, Δc) of the tile lies (Δc·W·s₀, Δr·C·s₁) from the first, its relaxed period (§11.3.1).
+    const int copy_r = (r - tr) / tile_courses, copy_c = (c - tc) / tile_wales;
+    const Vec3 period_offset(copy_c * tile_wales * L.wale_spacing * (rest.period_scale[0] - 1.0),
+                             copy_r * tile_courses * L.course_spacing * (rest.period_scale[1] - 1.0), 0.0);
+    q0_.segment<3>(node.x_dof) += rest.dx[tn] + period_offset;
     // The slots of a one-yarn node are the head (below the last course's) or the leg (above the first).
     const bool leg_only = r < 0;
     for (size_t k = 0; k < node.coord.size(); ++k) {
@@ -315,7 +319,7 @@ void KnitModel::add_compression() {
     auto row = [&](int r, Vec3& shift) {
       shift.setZero();
       if (!tile_) return r;
-      const double period = L.courses * L.course_spacing;
+      const double period = L.courses * L.course_spacing * L.period_scale[1];
       if (r < 0) shift.y() = -period;
       if (r >= L.courses) shift.y() = period;
       return (r + L.courses) % L.courses;
@@ -342,7 +346,15 @@ void KnitModel::add_compression() {
   }
   stitch.finish(terms_);
 
+  // The pairs are found at the generated period (so that a tile has the same
+  // pairs at every period scale, §11.3.1) and act at the tile's period.
   const std::vector<YarnPiece> pieces = yarn_pieces();
+  std::vector<YarnPiece> generated = pieces;
+  const Vec3 scale(L.period_scale[0], L.period_scale[1], 1.0);
+  for (YarnPiece& piece : generated) {
+    piece.dx0 = piece.dx0.cwiseQuotient(scale);
+    piece.dx1 = piece.dx1.cwiseQuotient(scale);
+  }
   std::vector<Vec3> x;
   for (const KnitNode& n : graph_.nodes()) x.push_back(n.x);
   std::vector<Vec3> images{Vec3::Zero()};
@@ -353,7 +365,7 @@ void KnitModel::add_compression() {
         images.push_back(Vec3(i * L.wales * L.wale_spacing, j * L.courses * L.course_spacing, 0.0));
   }
   Building<YarnCompressionTerm> pairs;
-  for (const PiecePair& p : compression_pairs(x, pieces, images, knit_compression_cutoff(L, scene_.radius_m))) {
+  for (const PiecePair& p : compression_pairs(x, generated, images, knit_compression_cutoff(L, scene_.radius_m))) {
     const YarnPiece &a = pieces[p.a], &b = pieces[p.b];
     std::array<int, 12> st{};
     const int nodes[4] = {a.n0, a.n1, b.n0, b.n1};
@@ -363,8 +375,9 @@ void KnitModel::add_compression() {
     pairs.term->tag_last(kCompressionStiffnessKey, kappa);
     pairs.add_shift(a.dx0);
     pairs.add_shift(a.dx1);
-    pairs.add_shift(b.dx0 + p.shift);
-    pairs.add_shift(b.dx1 + p.shift);
+    const Vec3 shift = p.shift.cwiseProduct(scale);
+    pairs.add_shift(b.dx0 + shift);
+    pairs.add_shift(b.dx1 + shift);
   }
   pairs.finish(terms_);
 }
@@ -483,7 +496,9 @@ std::map<std::string, std::string> KnitModel::describe() const {
     const KnitRestShape& rest = relaxed_tile(scene_);
     std::ostringstream r;
     r << rest.courses << " x " << rest.wales << " tile, residual " << rest.residual_N << " N after " << rest.iterations
-      << " Newton steps, net force on its period " << rest.period_force_N[0] << ", " << rest.period_force_N[1] << " N";
+      << " Newton steps, period scale " << rest.period_scale[0] << ", " << rest.period_scale[1]
+      << (rest.period_relaxed ? " (relaxed)" : " (" + rest.period_note + ")") << ", net force on its period "
+      << rest.period_force_N[0] << ", " << rest.period_force_N[1] << " N";
     m["rest_shape"] = r.str();
   }
   return m;

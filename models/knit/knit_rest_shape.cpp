@@ -198,13 +198,33 @@ Vec knit_tile_state(const Scene& scene, const KnitRestShape& rest) {
   return q;
 }
 
+namespace {
+
+KnitRestShape rest_shape_of(const Scene& scene) {
+  if (!(scene.knit->compression_stiffness_N_per_m > 0.0)) {
+    KnitRestShape fixed = relax_knit_tile(scene);
+    fixed.period_note = "generated period: without contact compression the tile has no rest period";
+    return fixed;
+  }
+  KnitPeriodRelaxation relaxed = relax_knit_period(scene);
+  if (relaxed.converged) {
+    relaxed.rest.period_relaxed = true;
+    return relaxed.rest;
+  }
+  KnitRestShape fixed = relax_knit_tile(scene);
+  fixed.period_note = relaxed.message + "; the generated period is kept";
+  return fixed;
+}
+
+}  // namespace
+
 const KnitRestShape& relaxed_tile(const Scene& scene) {
   static std::mutex lock;
   static std::map<std::string, KnitRestShape> cache;
   const std::string key = cache_key(scene);
   std::lock_guard<std::mutex> guard(lock);
   auto it = cache.find(key);
-  if (it == cache.end()) it = cache.emplace(key, relax_knit_tile(scene)).first;
+  if (it == cache.end()) it = cache.emplace(key, rest_shape_of(scene)).first;
   return it->second;
 }
 

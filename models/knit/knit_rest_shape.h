@@ -27,6 +27,10 @@ struct KnitRestShape {
   std::array<double, 2> period_scale{1.0, 1.0};
   std::array<double, 2> period_force_N{0.0, 0.0};
   int period_iterations = 0;
+  // Whether the period is relaxed (|P_i| within kKnitPeriodTolerance·k_s), and
+  // where it is not, why the generated one is kept.
+  bool period_relaxed = false;
+  std::string period_note;
 };
 
 // Converged when ‖f‖∞ ≤ kKnitRestTolerance·k_s of the stiffest yarn; a relaxed
@@ -55,7 +59,10 @@ struct KnitPeriodRelaxation {
 KnitPeriodRelaxation relax_knit_period(const Scene& scene, int max_steps = 40);
 // The tile state of a rest shape (node positions and coordinates).
 Vec knit_tile_state(const Scene& scene, const KnitRestShape& rest);
-// The same, computed once per pattern and parameters (thread-safe).
+// The rest shape of a knit scene's cloth (docs/models.md §11.3.1): the tile
+// relaxed with its period; at the generated period when the scene has no
+// contact compression (then no rest period exists) or when the period does not
+// relax (period_note says why). Computed once per pattern and parameters (thread-safe).
 const KnitRestShape& relaxed_tile(const Scene& scene);
 
 }  // namespace wl

@@ -3,6 +3,7 @@
 // relaxation's outcome with the present terms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "models/knit/knit_model.h"
@@ -24,8 +25,7 @@ double k_s(const Scene& s) { return 5e5 * M_PI * s.radius_m * s.radius_m; }
 // Without a contact-compression term nothing holds the loops open: the
 // stockinette tile's relaxed energy keeps falling as its period widens along
 // the course and shortens along the wale, so its period does not relax
-// (docs/models.md §11.3.1). A compression term that gives the tile a rest
-// period turns this test over: then |P_i| must fall below the bound.
+// (docs/models.md §11.3.1); with it the next test finds one.
 TEST(KnitPeriod, WithoutCompressionTheStockinetteTileHasNoRestPeriod) {
   const Scene s = period_scene("stockinette", "[knit]\ncompression_stiffness_N_per_m = 0\n");
   const KnitPeriodRelaxation early = relax_knit_period(s, 40), r = relax_knit_period(s, 100);
@@ -48,6 +48,42 @@ TEST(KnitPeriod, WithoutCompressionTheStockinetteTileHasNoRestPeriod) {
   const KnitRestShape fixed = relax_knit_tile(s);
   EXPECT_LT(fixed.period_force_N[0], -100.0 * bound);
   EXPECT_GT(fixed.period_force_N[1], 100.0 * bound);
+}
+
+// With the contact compression (default κ) the tiles have a rest period:
+// Newton's method on P(ℓ) = 0 converges for stockinette and 2×2 rib, and the
+// rib's relaxed course period, per wale, is markedly narrower than the
+// stockinette's (real rib draws in; the rib's knit and purl wales fold onto
+// each other), within a sane range. The cloth's rest shape uses it.
+TEST(KnitPeriod, WithCompressionTheTilesHaveARestPeriodAndRibIsNarrower) {
+  const Scene stockinette = period_scene("stockinette"), rib = period_scene("rib2x2");
+  const double bound = kKnitPeriodTolerance * k_s(stockinette);
+  std::array<double, 2> scale[2];
+  int k = 0;
+  for (const Scene* s : {&stockinette, &rib}) {
+    const KnitRestShape& r = relaxed_tile(*s);
+    EXPECT_TRUE(r.period_relaxed) << r.period_note;
+    EXPECT_LE(std::abs(r.period_force_N[0]), bound);
+    EXPECT_LE(std::abs(r.period_force_N[1]), bound);
+    EXPECT_LE(r.residual_N, kKnitRestTolerance * k_s(*s));
+    // Not the generated period: the fixed-period tile is not at rest.
+    EXPECT_GT(std::abs(r.period_scale[0] - 1.0), 1e3 * kKnitRestTolerance);
+    scale[k++] = r.period_scale;
+  }
+  const double width_ratio = scale[1][0] / scale[0][0];  // per wale: both tiles span their wales' generated width
+  EXPECT_LT(width_ratio, 0.8);
+  EXPECT_GT(width_ratio, 0.3);
+  // The cloth is tiled at that period: a rib's course spans less than a stockinette's of as many wales.
+  auto course_width = [](const Scene& s) {
+    const KnitModel m(s);
+    double lo = INFINITY, hi = -INFINITY;
+    for (int n = 0; n < m.graph().num_nodes(); ++n) {
+      lo = std::min(lo, m.position(m.initial_q(), n).x());
+      hi = std::max(hi, m.position(m.initial_q(), n).x());
+    }
+    return hi - lo;
+  };
+  EXPECT_LT(course_width(rib), 0.8 * course_width(stockinette));
 }
 
 // P_i (a difference of the energy at a fixed state) against the derivative of

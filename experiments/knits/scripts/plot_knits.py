@@ -15,9 +15,13 @@ order, models/knit/knit_graph.cpp). Per frame:
   ±90° and folds back once the edge has turned past the vertical (frames must
   be close enough for each edge to turn by less than 180° between them); the
   mean of two opposite edges again;
-- course width: the mean over the inner contact rows of the row's extent in x.
+- course width: the mean over the inner contact rows of the row's extent in x;
+- intersecting pairs: RUN/self_intersections.csv's count at the frame (pairs of
+  yarn pieces that are not neighbours whose capsules overlap, docs/models.md §11.10).
 Writes OUT/knits.csv (every frame), OUT/knits_ends.csv (the first and last
-frame of each pattern) and OUT/knit_curl.png."""
+frame of each pattern, with the largest count of intersecting pairs over all
+frames), OUT/widths.csv (each pattern's course width at the first and last
+frame and its ratio to the stockinette's) and OUT/knit_curl.png."""
 import os
 import sys
 import tomllib
@@ -66,6 +70,34 @@ def unwrap_turns(series):
         m["wale_turn"] = (m["turn_left"] + m["turn_right"]) / 2
 
 
+def add_intersections(series, run):
+    """Each frame's intersecting pairs (RUN/self_intersections.csv, matched by time) and the largest so far."""
+    path = os.path.join(run, "self_intersections.csv")
+    if not os.path.exists(path):
+        io.fail(f"{path}: missing (every knit run writes it)")
+    counts = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    largest = 0
+    for t, m in series:
+        near = np.abs(counts[:, 0] - t) <= 1e-9 * max(1.0, abs(t))
+        if not near.any():
+            io.fail(f"{path}: no count at t = {t}")
+        m["intersecting_pairs"] = int(counts[near, 1][0])
+        largest = max(largest, m["intersecting_pairs"])
+        m["max_intersecting_pairs"] = largest
+
+
+def widths_table(series):
+    """Per pattern: course width [mm] at the first and last frame, and the ratio to the stockinette's."""
+    ref = series.get("stockinette")
+    lines = ["pattern,width_first_mm,width_last_mm,ratio_to_stockinette_first,ratio_to_stockinette_last"]
+    for name, s in series.items():
+        first, last = s[0][1]["width_mm"], s[-1][1]["width_mm"]
+        ratio = [f"{w / r:.4g}" if ref else "" for w, r in
+                 ((first, ref[0][1]["width_mm"] if ref else 1), (last, ref[-1][1]["width_mm"] if ref else 1))]
+        lines.append(f"{name},{first:.6g},{last:.6g},{ratio[0]},{ratio[1]}")
+    return "\n".join(lines) + "\n"
+
+
 def main():
     if len(sys.argv) < 3:
         io.fail(__doc__)
@@ -79,16 +111,19 @@ def main():
         name = p["kind"]
         s = [(t, measure(mesh.points, p["courses"], p["wales"])) for t, mesh in io.read_frames(run)]
         unwrap_turns(s)
+        add_intersections(s, run)
         rows += [dict(pattern=name, t_s=t, **m) for t, m in s]
         series[name] = s
     keys = ["pattern", "t_s", "bottom", "top", "left", "right", "course_curl", "wale_curl", "width_mm",
-            "turn_bottom", "turn_top", "turn_left", "turn_right", "course_turn", "wale_turn"]
+            "turn_bottom", "turn_top", "turn_left", "turn_right", "course_turn", "wale_turn", "intersecting_pairs",
+            "max_intersecting_pairs"]
     text = ",".join(keys) + "\n" + "".join(
         ",".join(str(r[k]) if k == "pattern" else f"{r[k]:.6g}" for k in keys) + "\n" for r in rows)
     io.write_text_atomically(os.path.join(out, "knits.csv"), text)
     ends = [dict(pattern=name, t_s=t, **m) for name, s in series.items() for t, m in (s[0], s[-1])]
     io.write_text_atomically(os.path.join(out, "knits_ends.csv"), ",".join(keys) + "\n" + "".join(
         ",".join(str(r[k]) if k == "pattern" else f"{r[k]:.6g}" for k in keys) + "\n" for r in ends))
+    io.write_text_atomically(os.path.join(out, "widths.csv"), widths_table(series))
     print(f"{'pattern':12s} {'t [s]':>6s} {'course-edge curl':>17s} {'wale-edge curl':>15s} "
           f"{'tilt':>6s} {'course width [mm]':>18s} {'turn: bottom':>13s} {'top':>7s} {'left':>7s} {'right':>7s}")
     for name, s in series.items():
