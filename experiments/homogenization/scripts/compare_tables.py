@@ -2,9 +2,10 @@
 
 usage: compare_tables.py SCENE TABLE_CSV FIGURE_PNG LABEL=RUNG_DIR ...
 
-Each RUNG_DIR is a `weavelab fidelity --variants fem_s1 --reference-from ...`
+Each RUNG_DIR is a `weavelab fidelity --variants fem_s1,... --reference-from ...`
 folder: its fidelity.csv holds the reference's row (full, the yarn level) and
-the continuum's (fem_s1). TABLE_CSV: per LABEL the continuum's RMS distance
+the continuum's (fem_s1, fem_s2, ...: a vertex at every crossing, every second,
+...). TABLE_CSV: per LABEL and stride the continuum's RMS distance
 from the yarn crossings over all frames, as a share of the cloth's side
 ((warps − 1)·spacing of SCENE), the worst frame's RMS distance, both runs'
 estimated time errors (mean RMS over frames), the larger time error over the
@@ -22,12 +23,17 @@ from runs import fail, save_figure  # noqa: E402
 
 
 def rows_of(folder):
+    """The reference's row (full) and the continuum's rows (fem_s*), in the file's order."""
     try:
         with open(os.path.join(folder, "fidelity.csv"), newline="", encoding="utf-8") as f:
-            rows = {r["variant"]: r for r in csv.DictReader(f)}
-        return rows["full"], rows["fem_s1"]
+            rows = list(csv.DictReader(f))
+        full = [r for r in rows if r["variant"] == "full"]
+        fem = [r for r in rows if r["variant"].startswith("fem_s")]
+        if len(full) != 1 or not fem:
+            raise KeyError("no row full or no row fem_s*")
+        return full[0], fem
     except (OSError, KeyError) as e:
-        fail(f"{folder}: not a fidelity rung folder with the rows full and fem_s1 ({e})")
+        fail(f"{folder}: not a fidelity rung folder with the rows full and fem_s* ({e})")
 
 
 def number(text):
@@ -47,25 +53,27 @@ def main(argv):
         side = (int(cloth["warps"]) - 1) * float(cloth["spacing_m"])
     except (OSError, ValueError, KeyError) as e:
         fail(f"{scene}: {e}")
-    head = ["continuum", "rms_m", "share_of_cloth", "worst_frame_rms_m", "yarn_time_error_m",
+    head = ["continuum", "stride", "rms_m", "share_of_cloth", "worst_frame_rms_m", "yarn_time_error_m",
             "continuum_time_error_m", "time_error_over_distance", "continuum_outcome", "yarn_cpu_s",
             "continuum_cpu_s"]
     rows = []
     for label, folder in (a.split("=", 1) for a in argv[4:]):
-        yarn, fem = rows_of(folder)
-        d = number(fem["rms_m"])
-        ey, ef = number(yarn["time_error_mean_rms_m"]), number(fem["time_error_mean_rms_m"])
-        rows.append([label, d, d / side, number(fem["worst_frame_rms_m"]), ey, ef, max(ey, ef) / d, fem["outcome"],
-                     number(yarn["cpu_s"]), number(fem["cpu_s"])])
+        yarn, fems = rows_of(folder)
+        for fem in fems:
+            d = number(fem["rms_m"])
+            ey, ef = number(yarn["time_error_mean_rms_m"]), number(fem["time_error_mean_rms_m"])
+            rows.append([label, int(fem["variant"][len("fem_s"):]), d, d / side, number(fem["worst_frame_rms_m"]), ey,
+                         ef, max(ey, ef) / d, fem["outcome"], number(yarn["cpu_s"]), number(fem["cpu_s"])])
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6, 3.6))
+    labels = list(dict.fromkeys(r[0] for r in rows))
     for k, r in enumerate(rows):
-        ax.bar(k, 1e3 * r[1], color=f"C{k}", width=0.6)
-        ax.plot([k - 0.3, k + 0.3], [1e3 * r[5]] * 2, "k:", lw=1.5, label="continuum's time error" if k == 0 else None)
-        ax.plot([k - 0.3, k + 0.3], [1e3 * r[4]] * 2, "k--", lw=1, label="yarn level's time error" if k == 0 else None)
-    ax.set_xticks(range(len(rows)), [r[0] for r in rows])
+        ax.bar(k, 1e3 * r[2], color=f"C{labels.index(r[0])}", width=0.6)
+        ax.plot([k - 0.3, k + 0.3], [1e3 * r[6]] * 2, "k:", lw=1.5, label="continuum's time error" if k == 0 else None)
+        ax.plot([k - 0.3, k + 0.3], [1e3 * r[5]] * 2, "k--", lw=1, label="yarn level's time error" if k == 0 else None)
+    ax.set_xticks(range(len(rows)), [f"{r[0]}\nstride {r[1]}" for r in rows], fontsize=8)
     ax.set_ylabel("RMS distance to the yarn level [mm]")
     ax.set_yscale("log")
     ax.legend(fontsize=8)
