@@ -159,6 +159,13 @@ TileLawFile parse_tile_law(const std::string& text, const std::string& source) {
   return law;
 }
 
+double yarn_matched_areal_density(const Scene& s) {
+  double mass = 0.0;
+  for (int j = 0; j < s.warps; ++j) mass += s.warp_type(j).density_kg_per_m * (s.wefts - 1) * s.spacing_m;
+  for (int i = 0; i < s.wefts; ++i) mass += s.weft_type(i).density_kg_per_m * (s.warps - 1) * s.spacing_m;
+  return mass / ((s.wefts - 1) * (s.warps - 1) * s.spacing_m * s.spacing_m);
+}
+
 bool is_tile_law_file(const std::string& path) {
   if (path.empty()) return false;
   std::ifstream in(path, std::ios::binary);

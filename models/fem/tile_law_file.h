@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "models/scene/scene.h"
+
 namespace wl {
 
 inline constexpr std::array<const char*, 6> kTileLawStrainNames{"stretch_warp",   "stretch_weft",   "shear",
@@ -44,6 +46,10 @@ struct TileLawFile {
   double weft_bending_N_m() const;
 };
 
+// The yarn level's total yarn mass over the crossing grid's area [kg/m²], the
+// mass `weavelab calibrate` gives the continuum (driver/calibrate.h); a tile law
+// carries no mass, so its continuum takes this one (docs/models.md §6.9).
+double yarn_matched_areal_density(const Scene& scene);
 // True when `path` names a tile law: its first line is "name,value" (a FEM
 // parameter file is TOML, which cannot start so). False for "" or an unreadable file.
 bool is_tile_law_file(const std::string& path);

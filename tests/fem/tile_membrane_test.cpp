@@ -215,6 +215,10 @@ TEST(TileMembrane, ParameterFileOfTheSceneBuildsTheMembraneAndTheBending) {
   EXPECT_EQ(model.describe().at("terms").find("fem-shear"), std::string::npos);
   EXPECT_DOUBLE_EQ(model.material().warp_bending_N_m, 2 * 1.5 * 0.1 / 100);
   EXPECT_DOUBLE_EQ(model.material().weft_bending_N_m, 2 * 1.5 * 0.08 / 100);
+  // the yarn level's mass: 3 warps and 3 wefts of 2 spacings each over (2 spacings)², 3/2 of the
+  // per-area default 2ρ/L of an endless fabric
+  EXPECT_NEAR(model.material().areal_density_kg_per_m2,
+              1.5 * default_fem_material(scene("law.csv")).areal_density_kg_per_m2, 1e-12);
   // a TOML parameter file keeps the stretch and shear terms
   const FemModel plain(scene("params.toml"));
   EXPECT_NE(plain.describe().at("terms").find("fem-stretch"), std::string::npos);
