@@ -1,5 +1,7 @@
 #include "driver/calibrate.h"
+
 #include "driver/time_error.h"
+#include "models/fem/tile_law_file.h"
 
 #include <algorithm>
 #include <chrono>
@@ -141,12 +143,7 @@ std::string shear_law_note(const FemMaterial& m) {
 
 }  // namespace
 
-double matched_areal_density(const Scene& s) {
-  double mass = 0.0;
-  for (int j = 0; j < s.warps; ++j) mass += s.warp_type(j).density_kg_per_m * (s.wefts - 1) * s.spacing_m;
-  for (int i = 0; i < s.wefts; ++i) mass += s.weft_type(i).density_kg_per_m * (s.warps - 1) * s.spacing_m;
-  return mass / ((s.wefts - 1) * (s.warps - 1) * s.spacing_m * s.spacing_m);
-}
+double matched_areal_density(const Scene& s) { return yarn_matched_areal_density(s); }
 
 CalibratePlan plan_calibration(const CalibrateConfig& c) {
   CalibratePlan p;

@@ -92,15 +92,6 @@ std::string tiles_json(const Scene& scene, const TilesConfig& config, const Tile
   return j.dump();
 }
 
-std::string law_csv(const TileLaw& law) {
-  std::ostringstream s;
-  s.precision(17);
-  s << "name,value\nenergy_scale_J_per_m2," << law.energy_scale << "\n";
-  for (int k = 0; k < 6; ++k) s << "scale:" << kMacroStrainNames[k] << "," << law.scale[k] << "\n";
-  for (int i = 0; i < kTileLawBasisSize; ++i) s << TileLaw::basis_name(i) << "," << law.coefficients[i] << "\n";
-  return s.str();
-}
-
 // The held-out samples beside the law: strains, W and the stresses, each with the law's.
 std::string held_out_csv(const TileLaw& law, const std::vector<TileSample>& held_out) {
   std::ostringstream s;
@@ -122,6 +113,17 @@ std::string held_out_csv(const TileLaw& law, const std::vector<TileSample>& held
 
 }  // namespace
 
+std::string tile_law_csv(const TileLaw& law, const TileRanges& ranges) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "name,value\nenergy_scale_J_per_m2," << law.energy_scale << "\n";
+  for (int k = 0; k < 6; ++k) s << "scale:" << kMacroStrainNames[k] << "," << law.scale[k] << "\n";
+  for (int k = 0; k < 6; ++k) s << "lo:" << kMacroStrainNames[k] << "," << ranges.lo[k] << "\n";
+  for (int k = 0; k < 6; ++k) s << "hi:" << kMacroStrainNames[k] << "," << ranges.hi[k] << "\n";
+  for (int i = 0; i < kTileLawBasisSize; ++i) s << TileLaw::basis_name(i) << "," << law.coefficients[i] << "\n";
+  return s.str();
+}
+
 std::string tile_cache_name(const std::string& key) { return "tile_samples_" + text_hash(key) + ".csv"; }
 
 TilesResult run_tiles(const Scene& scene, const TilesConfig& config) {
@@ -141,7 +143,7 @@ TilesResult run_tiles(const Scene& scene, const TilesConfig& config) {
     r.fit = fit_tile_law(fitted, scale);
     r.fitted = tile_law_errors(r.fit.law, fitted);
     r.held_out = tile_law_errors(r.fit.law, held_out);
-    write_file_atomically(config.out_dir / "tile_law.csv", law_csv(r.fit.law));
+    write_file_atomically(config.out_dir / "tile_law.csv", tile_law_csv(r.fit.law, config.ranges));
     write_file_atomically(config.out_dir / "held_out.csv", held_out_csv(r.fit.law, held_out));
   }
   write_file_atomically(config.out_dir / "tiles.json", tiles_json(scene, config, r));

@@ -32,6 +32,9 @@ struct TilesResult {
   TileLawErrors fitted, held_out;
 };
 
+// The law as the continuum reads it ([fem] tile_law, models/fem/tile_law_file.h): W₀, the
+// scales, the sampled box and the coefficients by monomial, "name,value" rows (tile_law.csv).
+std::string tile_law_csv(const TileLaw& law, const TileRanges& ranges);
 // The cache file of a sample set: tile_samples_<text_hash(key)>.csv.
 std::string tile_cache_name(const std::string& key);
 // Checks the options (std::invalid_argument naming the option: exit 2), then

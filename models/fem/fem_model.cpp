@@ -17,7 +17,9 @@
 #include "models/fem/terms/in_plane_shear.h"
 #include "models/fem/terms/lumped_mass.h"
 #include "models/fem/terms/nodal_gravity.h"
+#include "models/fem/terms/tile_membrane.h"
 #include "models/fem/terms/warp_weft_stretch.h"
+#include "models/fem/tile_law_file.h"
 
 namespace wl {
 namespace {
@@ -27,6 +29,14 @@ std::array<int, 9> triangle_stencil(const std::array<int, 3>& t) {
   for (int k = 0; k < 3; ++k)
     for (int c = 0; c < 3; ++c) s[3 * k + c] = 3 * t[k] + c;
   return s;
+}
+
+// The tile law's membrane on every triangle, instead of stretch and shear (docs/models.md §6.9).
+void add_tile_membrane(std::vector<std::unique_ptr<Term>>& terms, TileMembraneLaw law, const FemMesh& mesh,
+                       const std::vector<TriangleRest>& rest) {
+  auto t = std::make_unique<TileMembraneTerm>(std::make_shared<const TileMembraneLaw>(std::move(law)));
+  for (int e = 0; e < mesh.num_triangles(); ++e) t->add(triangle_stencil(mesh.triangles[e]), rest[e]);
+  terms.push_back(std::move(t));
 }
 
 std::string format(double x) {
@@ -113,8 +123,13 @@ void FemModel::build() {
 void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
   const TermSwitches& on = scene_.terms;
   add_mass(terms);  // always: the FEM has no other inertia
-  if (on.stretch) add_stretch(terms);
-  if (on.shear) add_shear(terms);
+  // A tile law as the parameter file: its membrane holds stretch and shear in one (docs/models.md §6.9).
+  if (is_tile_law_file(scene_.fem.parameter_file) && (on.stretch || on.shear))
+    add_tile_membrane(terms, TileMembraneLaw(read_tile_law_file(scene_.fem.parameter_file)), mesh_, rest_);
+  else {
+    if (on.stretch) add_stretch(terms);
+    if (on.shear) add_shear(terms);
+  }
   if (on.stretch && scene_.fem.border_strip) add_border_stretch(terms);
   if (on.bending && scene_.fem.grid_line_bending) add_grid_line_bending(terms);
   else if (on.bending && !hinges_.empty()) add_hinge_bending(terms);
@@ -434,6 +449,10 @@ std::map<std::string, std::string> FemModel::describe() const {
       " shear_lock_exponent=" + format(p.shear_lock_exponent) + " warp_bending_N_m=" + format(p.warp_bending_N_m) +
       " weft_bending_N_m=" + format(p.weft_bending_N_m);
   if (p.diagonal_bending_N_m > 0) m["fem_parameters"] += " diagonal_bending_N_m=" + format(p.diagonal_bending_N_m);
+  if (is_tile_law_file(scene_.fem.parameter_file))
+    m["tile_law"] = scene_.fem.parameter_file +
+                    " (its membrane instead of the stretch and shear laws, its bending "
+                    "at rest; docs/models.md §6.9)";
   for (const auto& [key, value] : {std::pair{"stretch_coupling_N_per_m", p.stretch_coupling_N_per_m},
                                    std::pair{"warp_stretch_quartic_N_per_m", p.warp_stretch_quartic_N_per_m},
                                    std::pair{"weft_stretch_quartic_N_per_m", p.weft_stretch_quartic_N_per_m},
