@@ -15,7 +15,7 @@ import os
 # appended. A listed study without a Snakefile yet is shown as not yet run.
 STUDY_ORDER = ["main_job", "calibration", "homogenization", "diagnosis", "error_budget", "accuracy", "trajectory_fit",
                "cusick", "obstacles", "cantilever", "slide_pull", "knits", "pattern_study", "stability",
-               "work_precision", "fidelity", "published_code", "speed", "scale", "determinism"]
+               "work_precision", "fidelity", "published_code", "speed", "scale", "determinism", "mixed"]
 STUDIES_FOUND = sorted(os.path.basename(os.path.dirname(p)) for p in glob.glob("experiments/*/Snakefile"))
 STUDIES_ALL = STUDY_ORDER + [s for s in STUDIES_FOUND if s not in STUDY_ORDER]
 

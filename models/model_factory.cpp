@@ -4,6 +4,7 @@
 
 #include "models/fem/fem_model.h"
 #include "models/knit/knit_model.h"
+#include "models/mixed/mixed_model.h"
 #include "models/yarn/yarn_model.h"
 
 namespace wl {
@@ -36,7 +37,7 @@ std::string pattern_kind_location(const Scene& scene) {
 
 }  // namespace
 
-std::vector<std::string> model_names() { return {"yarn", "knit", "fem"}; }
+std::vector<std::string> model_names() { return {"yarn", "knit", "fem", "mixed"}; }
 
 std::string yarn_level_model(const Scene& scene) { return scene.knit ? "knit" : "yarn"; }
 
@@ -47,14 +48,18 @@ void check_model_for_scene(const Scene& scene, const std::string& name) {
   if (name == "knit" && !scene.knit)
     throw std::invalid_argument("model 'knit' is the knitted yarn level, and the scene is woven (" +
                                 pattern_kind_location(scene) + "): expected model 'yarn' or 'fem'");
-  if (name != "yarn" && name != "knit" && name != "fem")
-    throw std::invalid_argument("unknown model '" + name + "' (expected yarn, knit or fem)");
+  if (name != "yarn" && name != "knit" && name != "fem" && name != "mixed")
+    throw std::invalid_argument("unknown model '" + name + "' (expected yarn, knit, fem or mixed)");
+  if (name == "mixed" && !scene.mixed.present)
+    throw std::invalid_argument("model 'mixed' needs the scene's yarn-level region, and " + scene.source +
+                                " has no [mixed] table (yarn_region = [[i0, j0, i1, j1], ...], docs/models.md §12.1)");
 }
 
 std::unique_ptr<Model> make_model(const Scene& scene, const std::string& name) {
   check_model_for_scene(scene, name);
   if (name == "knit") return std::make_unique<KnitModel>(scene);
   if (name == "yarn") return std::make_unique<YarnModel>(scene);
+  if (name == "mixed") return std::make_unique<MixedModel>(scene);
   return std::make_unique<FemModel>(scene);
 }
 

@@ -1,5 +1,6 @@
 // Builds a Model of a Scene by name: "yarn" (woven yarn level), "knit" (knitted
-// yarn level, docs/models.md §11) or "fem" (the continuum).
+// yarn level, docs/models.md §11), "fem" (the continuum) or "mixed" (the yarn level on
+// the scene's [mixed] region, the continuum elsewhere, docs/models.md §12).
 #pragma once
 #include <memory>
 #include <string>

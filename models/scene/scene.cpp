@@ -89,6 +89,9 @@
 //       or sphere obstacle, not turned about x or y; woven cloth only
 //     drape_pixel_m (cloth side / 8192 ≤ x ≤ cloth.spacing_m, default 1e-4),
 //     fold_prominence_m (> 0, default 5e-4): only with drape = true
+//   [mixed]         the mixed model's yarn-level region (mixed_reader.cpp, docs/models.md §12.1):
+//     yarn_region = [[i0, j0, i1, j1], ...], rectangles of crossings, integers
+//       0 ≤ i0 ≤ i1 < wefts, 0 ≤ j0 ≤ j1 < warps (inclusive); [] for none; woven cloth only
 //
 // ERRORS: SceneError with file, line (source line of the offending value; for a
 // missing key or a violated default, the line of its table), the dotted key
@@ -105,6 +108,7 @@
 #include <sstream>
 
 #include "models/scene/measure_reader.h"
+#include "models/scene/mixed_reader.h"
 #include "models/scene/obstacle_reader.h"
 #include "models/scene/scene_limits.h"
 #include "models/scene/toml_reader.h"
@@ -595,7 +599,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   TableReader top(src, root, "");
   // Unknown tables first: a misspelt table name is the likeliest error.
   top.declare({"cloth", "yarn_types", "contact", "pose", "pins", "handles", "gravity", "wind", "damping", "time",
-               "terms", "compat", "fem", "obstacles", "obstacle_contact", "self_contact", "knit", "measures"});
+               "terms", "compat", "fem", "obstacles", "obstacle_contact", "self_contact", "knit", "measures", "mixed"});
   top.finish();
   const auto yarn_defs = read_yarn_types(top);
   read_cloth(top, s, yarn_defs);
@@ -610,6 +614,7 @@ Scene parse_scene(const std::string& toml_text, const std::string& source_name) 
   read_compat(top, s);
   scene_detail::read_obstacles(top, s);
   scene_detail::read_measures(top, s);
+  scene_detail::read_mixed(top, s);
   return s;
 }
 

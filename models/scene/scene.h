@@ -156,6 +156,14 @@ struct MeasureSettings {
   int line = 0;                     // the [measures] table in the scene file
 };
 
+// [mixed] (docs/models.md §12.1): the crossings the mixed model simulates at yarn level, the
+// continuum elsewhere. Only the model "mixed" reads it.
+struct MixedSettings {
+  bool present = false;                         // the scene has a [mixed] table
+  std::vector<std::array<int, 4>> yarn_region;  // rectangles [i0, j0, i1, j1] of crossings, inclusive
+  int line = 0;                                 // the [mixed] table in the scene file
+};
+
 struct TermSwitches {
   bool stretch = true, bending = true, shear = true, parallel_contact = true, friction = true;
   bool gravity = true, wind = true, handles = true, inertia = true;
@@ -245,6 +253,7 @@ struct Scene {
   ObstacleContactParams obstacle_contact;
   SelfContactParams self_contact;
   MeasureSettings measures;
+  MixedSettings mixed;
 
   int nodes_u() const { return wefts; }  // nodes along a warp = number of wefts
   int nodes_v() const { return warps; }

@@ -17,7 +17,9 @@ int pattern_sign(const Pattern& p, int i, int j) {
   return 1;
 }
 
-WovenGrid::WovenGrid(const Scene& scene)
+WovenGrid::WovenGrid(const Scene& scene) : WovenGrid(scene, YarnRegion::everything(scene.nodes_u(), scene.nodes_v())) {}
+
+WovenGrid::WovenGrid(const Scene& scene, const YarnRegion& region)
     : nu_(scene.nodes_u()), nv_(scene.nodes_v()), L_(scene.spacing_m), dofs_(nu_ * nv_), sign_(nu_ * nv_) {
   std::vector<double> constants;
   for (int j = 0; j < nv_; ++j)
@@ -25,7 +27,7 @@ WovenGrid::WovenGrid(const Scene& scene)
       NodeDofs& d = dofs_[node(i, j)];
       d.x = num_dofs_;
       num_dofs_ += 3;
-      const bool slides = scene.sliding && interior(i, j);
+      const bool slides = scene.sliding && region.yarn_interior(i, j);
       if (slides) {
         d.u = num_dofs_++;
         d.v = num_dofs_++;

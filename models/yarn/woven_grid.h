@@ -3,11 +3,13 @@
 // along the weft (v = j·L). Warp j passes nodes (0..nu−1, j) and slides in u;
 // weft i passes nodes (i, 0..nv−1) and slides in v. The outer ring has no
 // sliding DoFs (docs/models.md §2.1, §4.2); neither has any node when sliding is off.
+// Over a YarnRegion only the region's yarn-interior crossings slide (docs/models.md §12.2).
 #pragma once
 #include <vector>
 
 #include "models/core/types.h"
 #include "models/scene/scene.h"
+#include "models/yarn/yarn_region.h"
 
 namespace wl {
 
@@ -20,6 +22,7 @@ struct NodeDofs {
 class WovenGrid {
  public:
   explicit WovenGrid(const Scene& scene);
+  WovenGrid(const Scene& scene, const YarnRegion& region);
   int nu() const { return nu_; }
   int nv() const { return nv_; }
   int num_nodes() const { return nu_ * nv_; }

@@ -36,7 +36,11 @@ const char* pattern_name(Pattern::Kind k) {
 
 }  // namespace
 
-YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
+YarnModel::YarnModel(const Scene& scene)
+    : YarnModel(scene, YarnRegion::everything(scene.nodes_u(), scene.nodes_v()), {}) {}
+
+YarnModel::YarnModel(const Scene& scene, const YarnRegion& region, std::vector<std::unique_ptr<Term>> other_terms)
+    : scene_(scene), region_(region), grid_(scene, region) {
   num_dofs_ = grid_.num_dofs();
   constants_ = grid_.constants();
   set_rest_state();
@@ -48,7 +52,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   const bool friction = on.friction && scene.sliding;
   const NormalForceStretch normal_force_stretch =
       scene.compat.normal_force_on_centre_lines ? NormalForceStretch::centre_lines : NormalForceStretch::crimped_copies;
-  if (gong_shear || friction)
+  if ((gong_shear || friction) && region_.yarn_cells() > 0)
     normals_.emplace(grid_, warp_.ks, warp_.kb, weft_.ks, weft_.kb, scene.radius_m, normal_force_stretch);
   if (on.inertia) add_inertia();
   if (on.stretch) add_stretch();
@@ -63,6 +67,7 @@ YarnModel::YarnModel(const Scene& scene) : scene_(scene), grid_(scene) {
   add_pins();
   add_obstacles();
   add_self_contact();
+  for (auto& term : other_terms) terms_.push_back(std::move(term));
   if (normals_ && scene.exact_contact_jacobian) {
     normals_->compute(q0_);
     normals_->compute_gradient(q0_);  // the structure of ∂F_n/∂q, the same at every state
@@ -109,25 +114,31 @@ void YarnModel::build_segments() {
   auto name = [](const std::vector<std::string>& cycle, int k) { return cycle[k % cycle.size()]; };
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i + 1 < nu; ++i)
-      segments_.push_back(
-          {grid_.node(i, j), grid_.node(i + 1, j), true, warp_.ks[j], warp_.rho[j], name(scene_.warp_yarn_types, j)});
+      segments_.push_back({grid_.node(i, j), grid_.node(i + 1, j), true, region_.segment_share(i, j, true), warp_.ks[j],
+                           warp_.rho[j], name(scene_.warp_yarn_types, j)});
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j + 1 < nv; ++j)
-      segments_.push_back(
-          {grid_.node(i, j), grid_.node(i, j + 1), false, weft_.ks[i], weft_.rho[i], name(scene_.weft_yarn_types, i)});
+      segments_.push_back({grid_.node(i, j), grid_.node(i, j + 1), false, region_.segment_share(i, j, false),
+                           weft_.ks[i], weft_.rho[i], name(scene_.weft_yarn_types, i)});
 }
 
 // The builders below tag each element with the scene parameter it is
-// proportional to (docs/models.md §9.1).
+// proportional to (docs/models.md §9.1), and scale it by its yarn share (1 on
+// the yarn model; docs/models.md §12.3: f ∝ share·p keeps ∂f/∂p = f/p).
+
+void YarnModel::push_term(std::unique_ptr<Term> term) {
+  if (term->num_elements() > 0) terms_.push_back(std::move(term));
+}
 
 // Segment inertia, docs/models.md §3.1.
 void YarnModel::add_inertia() {
   auto t = std::make_unique<SegmentInertiaTerm>();
   for (const Segment& s : segments_) {
-    t->add(segment_stencil(s), s.rho);
+    if (s.share == 0.0) continue;
+    t->add(segment_stencil(s), s.share * s.rho);
     t->tag_last(yarn_type_key(s.type, kDensityField), yarn_type(s.type).density_kg_per_m);
   }
-  terms_.push_back(std::move(t));
+  push_term(std::move(t));
 }
 
 // Stretch, docs/models.md §3.2.
@@ -135,10 +146,11 @@ void YarnModel::add_stretch() {
   auto t = std::make_unique<StretchTerm>();
   t->set_projected_step_stiffness(scene_.terms.stretch_projected_step_hessian);
   for (const Segment& s : segments_) {
-    t->add(segment_stencil(s), s.ks);
+    if (s.share == 0.0) continue;
+    t->add(segment_stencil(s), s.share * s.ks);
     t->tag_last(yarn_type_key(s.type, kStretchModulusField), yarn_type(s.type).stretch_modulus_Pa);
   }
-  terms_.push_back(std::move(t));
+  push_term(std::move(t));
 }
 
 // Gravity on the segment mass, docs/models.md §3.8.
@@ -147,10 +159,11 @@ void YarnModel::add_gravity() {
   if (g.norm() == 0.0) return;
   auto t = std::make_unique<GravityTerm>(g);
   for (const Segment& s : segments_) {
-    t->add(segment_stencil(s), s.rho);
+    if (s.share == 0.0) continue;
+    t->add(segment_stencil(s), s.share * s.rho);
     t->tag_last(yarn_type_key(s.type, kDensityField), yarn_type(s.type).density_kg_per_m);
   }
-  terms_.push_back(std::move(t));
+  push_term(std::move(t));
 }
 
 // Bending over three consecutive crossings of a yarn, docs/models.md §3.3.
@@ -158,9 +171,11 @@ void YarnModel::add_bending() {
   const int nu = grid_.nu(), nv = grid_.nv();
   auto t = std::make_unique<BendingTerm>();
   auto add = [&](int n0, int n1, int n2, bool warp, double kb, const std::string& type) {
+    const double share = region_.crossing_share(n0 % nu, n0 / nu);
+    if (share == 0.0) return;
     const NodeDofs &d0 = grid_.dofs(n0), &d1 = grid_.dofs(n1), &d2 = grid_.dofs(n2);
     const int c1 = warp ? d1.u : d1.v, c2 = warp ? d2.u : d2.v;
-    t->add({d0.x, d0.x + 1, d0.x + 2, d1.x, d1.x + 1, d1.x + 2, d2.x, d2.x + 1, d2.x + 2, c1, c2}, kb);
+    t->add({d0.x, d0.x + 1, d0.x + 2, d1.x, d1.x + 1, d1.x + 2, d2.x, d2.x + 1, d2.x + 2, c1, c2}, share * kb);
     t->tag_last(yarn_type_key(type, kBendingModulusField), yarn_type(type).bending_modulus_Pa);
   };
   auto name = [](const std::vector<std::string>& cycle, int k) { return cycle[k % cycle.size()]; };
@@ -172,7 +187,7 @@ void YarnModel::add_bending() {
     for (int j = 1; j + 1 < nv; ++j)
       add(grid_.node(i, j), grid_.node(i, j + 1), grid_.node(i, j - 1), false, weft_.kb[i],
           name(scene_.weft_yarn_types, i));
-  terms_.push_back(std::move(t));
+  push_term(std::move(t));
 }
 
 // Shear: four quadrants (warp ±, weft ±) at every node that has them,
@@ -192,6 +207,7 @@ void YarnModel::add_shear() {
         for (int dj : {1, -1}) {
           const int i1 = i + di, j3 = j + dj;
           if (i1 < 0 || i1 >= nu || j3 < 0 || j3 >= nv) continue;
+          if (!region_.yarn_cell(std::min(i, i1), std::min(j, j3))) continue;  // the quadrant's cell
           const int n0 = grid_.node(i, j);
           const int x0 = grid_.dofs(n0).x, x1 = grid_.dofs(grid_.node(i1, j)).x, x3 = grid_.dofs(grid_.node(i, j3)).x;
           const std::array<int, 9> st{x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2};
@@ -205,8 +221,8 @@ void YarnModel::add_shear() {
             cirio->tag_last(kShearModulusKey, c.shear_modulus_Pa);
           }
         }
-  if (gong) terms_.push_back(std::move(gong));
-  else terms_.push_back(std::move(cirio));
+  if (gong) push_term(std::move(gong));
+  else push_term(std::move(cirio));
 }
 
 // Contact of parallel yarns on the sliding coordinates, docs/models.md §3.5.
@@ -221,7 +237,7 @@ void YarnModel::add_parallel_contact() {
     const int sa = grid_.sign(s.a % nu, s.a / nu), sb = grid_.sign(s.b % nu, s.b / nu);
     t->add({ca, cb}, k, parallel_contact_distance(sa, sb, scene_.radius_m));
   }
-  terms_.push_back(std::move(t));
+  push_term(std::move(t));
 }
 
 // Sliding friction on u and v of every inner crossing, Gong's or Cirio's law
@@ -238,11 +254,13 @@ void YarnModel::add_friction() {
     for (int i = 1; i + 1 < grid_.nu(); ++i) {
       const int n = grid_.node(i, j);
       const NodeDofs& d = grid_.dofs(n);
+      if (!is_dof(d.u)) continue;  // a mixed cloth's crossing outside the region's interior
       t->add(d.u, n, i * L);
       t->add(d.v, n, j * L);
       friction_node_.insert(friction_node_.end(), {n, n});
       friction_axis_.insert(friction_axis_.end(), {0, 1});
     }
+  if (t->num_elements() == 0) return;
   friction_term_ = static_cast<int>(terms_.size());
   terms_.push_back(std::move(t));
 }
@@ -259,6 +277,7 @@ void YarnModel::add_wind() {
   };
   for (int j = 0; j + 1 < grid_.nv(); ++j)
     for (int i = 0; i + 1 < grid_.nu(); ++i) {
+      if (!region_.yarn_cell(i, j)) continue;
       const int n00 = grid_.node(i, j), n10 = grid_.node(i + 1, j), n11 = grid_.node(i + 1, j + 1),
                 n01 = grid_.node(i, j + 1);
       // docs/models.md §3.9; the published code alternates the diagonal (docs/published_code.md row 13).
@@ -270,23 +289,24 @@ void YarnModel::add_wind() {
         tri(n00, n11, n01);
       }
     }
-  terms_.push_back(std::move(t));
+  push_term(std::move(t));
 }
 
 // Yarn-internal stretch damping on every warp and weft segment (docs/models.md §3.12).
 void YarnModel::add_damping() {
   const double c = yarn_damper_coefficient(scene_.yarn_viscosity_Pa_s, scene_.radius_m, scene_.spacing_m);
   auto t = std::make_unique<YarnDamperTerm>();
-  auto segment = [&](int a, int b) {
+  auto segment = [&](int a, int b, double share) {
+    if (share == 0.0) return;
     const int xa = grid_.dofs(a).x, xb = grid_.dofs(b).x;
-    t->add({xa, xa + 1, xa + 2, xb, xb + 1, xb + 2}, c);
+    t->add({xa, xa + 1, xa + 2, xb, xb + 1, xb + 2}, share * c);
   };
   for (int j = 0; j < grid_.nv(); ++j)
     for (int i = 0; i < grid_.nu(); ++i) {
-      if (i + 1 < grid_.nu()) segment(grid_.node(i, j), grid_.node(i + 1, j));
-      if (j + 1 < grid_.nv()) segment(grid_.node(i, j), grid_.node(i, j + 1));
+      if (i + 1 < grid_.nu()) segment(grid_.node(i, j), grid_.node(i + 1, j), region_.segment_share(i, j, true));
+      if (j + 1 < grid_.nv()) segment(grid_.node(i, j), grid_.node(i, j + 1), region_.segment_share(i, j, false));
     }
-  terms_.push_back(std::move(t));
+  push_term(std::move(t));
 }
 
 // Handles: a spring from the node to its target, which starts at the rest position (docs/models.md §3.10).
@@ -294,10 +314,11 @@ void YarnModel::add_handles() {
   if (scene_.handles.empty()) return;
   auto t = std::make_unique<HandleSpringTerm>();
   for (const Handle& h : scene_.handles) {
+    if (!region_.holds(h.node.i, h.node.j)) continue;  // the continuum's (docs/models.md §12.3)
     const int x = grid_.dofs(grid_.node(h.node.i, h.node.j)).x;
     t->add({x, x + 1, x + 2}, q0_.segment<3>(x), h);
   }
-  terms_.push_back(std::move(t));
+  push_term(std::move(t));
 }
 
 // Pins hold every DoF of their node, sliding coordinates included.

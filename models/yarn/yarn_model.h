@@ -12,6 +12,7 @@
 #include "models/yarn/contact_chain.h"
 #include "models/yarn/contact_normals.h"
 #include "models/yarn/woven_grid.h"
+#include "models/yarn/yarn_region.h"
 
 namespace wl {
 
@@ -44,11 +45,20 @@ class YarnModel : public TermModel, public SlidingCoordinates {
                                  const Eigen::MatrixXd& dq_dp, const Eigen::MatrixXd& dv_dp, double h) override;
 
   const WovenGrid& grid() const { return grid_; }
+  // The crossings simulated at yarn level: the whole grid, or a mixed cloth's region.
+  const YarnRegion& region() const { return region_; }
   // Position of node (i, j) and its current material coordinates in state q.
   Vec3 position(const Vec& q, int i, int j) const;
   double coordinate(const Vec& q, int index) const;
 
  protected:
+  // The yarn level of a mixed cloth (docs/models.md §12): sliding only at the
+  // region's yarn-interior crossings, every element's coefficient times its yarn
+  // share (elements of share 0 and terms without elements are not built), and
+  // `other_terms` (on the same DoFs) after the yarn level's. A scene with obstacles,
+  // self-contact or exact_contact_jacobian is the caller's to refuse.
+  YarnModel(const Scene& scene, const YarnRegion& region, std::vector<std::unique_ptr<Term>> other_terms);
+
   // The contact normals and F_n at q (docs/models.md §3.6), handed to the terms in ctx.
   void prepare_auxiliary(double t, const Vec& q, const Vec& v, EvalContext& ctx) override;
   // The chain of ∂F_n/∂q and ∂F_u/∂q into the Jacobians (exact_contact_jacobian).
@@ -59,6 +69,7 @@ class YarnModel : public TermModel, public SlidingCoordinates {
   struct Segment {
     int a, b;          // node ids
     bool warp;         // along u (warp) or v (weft)
+    double share;      // of the cloth it stands for at yarn level (docs/models.md §12.3)
     double ks;         // stretch stiffness of its yarn [N]
     double rho;        // linear density of its yarn [kg/m]
     std::string type;  // its yarn type's name (scene yarn_types)
@@ -89,7 +100,11 @@ class YarnModel : public TermModel, public SlidingCoordinates {
   double cross_section() const;  // πR² [m²]
   const YarnType& yarn_type(const std::string& name) const { return scene_.yarn_types.at(name); }
 
+  // Appends a term the builders made, unless it has no elements.
+  void push_term(std::unique_ptr<Term> term);
+
   Scene scene_;
+  YarnRegion region_;
   WovenGrid grid_;
   YarnConstants warp_, weft_;
   std::vector<Segment> segments_;

@@ -57,7 +57,7 @@ class ModelAtAState(unittest.TestCase):
         self.assertNotEqual(energies["potential_J"], model.energies(model.initial_q, v)["potential_J"])
 
     def test_the_yarn_level_follows_the_cloth(self):
-        self.assertEqual(weavelab.model_names(), ["yarn", "knit", "fem"])
+        self.assertEqual(weavelab.model_names(), ["yarn", "knit", "fem", "mixed"])
         knit = weavelab.load_scene(os.path.join(SOURCE_DIR, "experiments", "scenes", "knit_stockinette.toml"))
         self.assertEqual(weavelab.Model(knit).name, "knit")  # no kind: the scene's yarn level
         self.assertEqual(weavelab.Model(knit, "knit").name, "knit")

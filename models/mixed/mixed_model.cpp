@@ -1,0 +1,163 @@
+#include "models/mixed/mixed_model.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "models/fem/fem_model.h"
+#include "models/mixed/region_term.h"
+
+namespace wl {
+namespace {
+
+// The scene as the mixed model takes it; SceneError naming what stands in the way.
+const Scene& checked(const Scene& s) {
+  if (!s.mixed.present)
+    throw std::invalid_argument(s.source +
+                                ": model 'mixed' needs a [mixed] table with yarn_region (docs/models.md §12.1)");
+  const int at = s.mixed.line;
+  auto line_of = [&](const std::string& key) {
+    const auto it = s.key_lines.find(key);
+    return it != s.key_lines.end() ? it->second : at;
+  };
+  const std::string why = " with model 'mixed' (docs/models.md §12.1)";
+  if (s.fem.stride != 1)
+    throw SceneError(s.source, line_of("fem"), "fem.stride", std::to_string(s.fem.stride),
+                     "1" + why + ": the continuum's vertices are the crossings");
+  if (!s.fem.mesh_file.empty())
+    throw SceneError(s.source, line_of("fem"), "fem.mesh_file", s.fem.mesh_file, "no mesh file" + why);
+  if (!s.obstacles.empty())
+    throw SceneError(s.source, s.obstacles.front().line, "obstacles", "[[obstacles]]",
+                     "no obstacles" + why + ", not carried over yet");
+  if (s.self_contact.enabled)
+    throw SceneError(s.source, s.self_contact.line, "self_contact.enabled", "true",
+                     "false" + why + ", not carried over yet");
+  if (s.exact_contact_jacobian)
+    throw SceneError(s.source, line_of("time.exact_contact_jacobian"), "time.exact_contact_jacobian", "true",
+                     "false" + why + ", not carried over yet");
+  return s;
+}
+
+YarnRegion region_of(const Scene& s) { return YarnRegion(s.nodes_u(), s.nodes_v(), s.mixed.yarn_region); }
+
+// The continuum's share of each element of the continuum's terms (docs/models.md §12.3), from the
+// crossings its stencil touches: vertex v is crossing (v mod nu, v div nu) on the stride-1 grid mesh.
+class ContinuumShares {
+ public:
+  ContinuumShares(const FemModel& fem, const YarnRegion& region) : region_(region) { set_vertex_mass_shares(fem); }
+
+  double of(const Term& term, int e) const {
+    const auto s = term.stencil(e);
+    auto vertex = [&](int k) { return s[3 * k] / 3; };
+    const std::string name = term.name();
+    if (name == "fem-mass" || name == "fem-stretch" || name == "fem-shear" || name == "wind")
+      return triangle(vertex(0), vertex(1), vertex(2));
+    if (name == "fem-bending")  // a hinge: half of each of its two triangles
+      return 0.5 * triangle(vertex(0), vertex(1), vertex(2)) + 0.5 * triangle(vertex(0), vertex(1), vertex(3));
+    if (name == "fem-line-bending") return 1.0 - region_.crossing_share(i(vertex(0)), j(vertex(0)));
+    if (name == "yarn_damping" || name == "fem-border-stretch") return edge(vertex(0), vertex(1));
+    if (name == "fem-gravity") return mass_share_[vertex(0)];
+    if (name == "handles") return region_.holds(i(vertex(0)), j(vertex(0))) ? 0.0 : 1.0;
+    throw std::logic_error("mixed model: no continuum share for term '" + name + "' (docs/models.md §12.3)");
+  }
+
+ private:
+  int i(int v) const { return v % region_.nu(); }
+  int j(int v) const { return v / region_.nu(); }
+  // A triangle lies in the cell of its smallest i and j.
+  double triangle(int a, int b, int c) const {
+    return region_.yarn_cell(std::min({i(a), i(b), i(c)}), std::min({j(a), j(b), j(c)})) ? 0.0 : 1.0;
+  }
+  double edge(int a, int b) const {
+    if (std::abs(i(a) - i(b)) + std::abs(j(a) - j(b)) != 1)
+      throw std::logic_error("mixed model: a continuum edge element is not a grid segment");
+    if (j(a) == j(b)) return 1.0 - region_.segment_share(std::min(i(a), i(b)), j(a), true);
+    return 1.0 - region_.segment_share(i(a), std::min(j(a), j(b)), false);
+  }
+  // Per vertex: the part of its lumped mass that continuum triangles give it (exactly 1 when all do).
+  void set_vertex_mass_shares(const FemModel& fem) {
+    const int nv = region_.nu() * region_.nv();
+    std::vector<double> continuum(nv, 0.0), total(nv, 0.0);
+    for (const auto& term : fem.terms()) {
+      if (term->name() != "fem-mass") continue;
+      double q[9], v[9], f[9], m[81];
+      for (int e = 0; e < term->num_elements(); ++e) {
+        fem.gather_local(*term, e, fem.initial_q(), fem.initial_v(), q, v);
+        std::fill(f, f + 9, 0.0);
+        std::fill(m, m + 81, 0.0);
+        term->evaluate(e, q, v, ElementOutput{f, nullptr, nullptr, m});
+        const auto s = term->stencil(e);
+        const double share = triangle(s[0] / 3, s[3] / 3, s[6] / 3);
+        for (int k = 0; k < 3; ++k) {
+          total[s[3 * k] / 3] += m[30 * k];  // the diagonal entry (3k, 3k) of the 9×9 block
+          continuum[s[3 * k] / 3] += share * m[30 * k];
+        }
+      }
+    }
+    mass_share_.resize(nv);
+    for (int k = 0; k < nv; ++k) mass_share_[k] = continuum[k] == total[k] ? 1.0 : continuum[k] / total[k];
+  }
+
+  const YarnRegion& region_;
+  std::vector<double> mass_share_;
+};
+
+std::string rectangles_text(const std::vector<std::array<int, 4>>& rectangles) {
+  std::string text = "[";
+  for (size_t k = 0; k < rectangles.size(); ++k) {
+    const auto& r = rectangles[k];
+    text += (k ? ", [" : "[") + std::to_string(r[0]) + ", " + std::to_string(r[1]) + ", " + std::to_string(r[2]) +
+            ", " + std::to_string(r[3]) + "]";
+  }
+  return text + "]";
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<Term>> continuum_terms(const Scene& scene, const YarnRegion& region) {
+  const FemModel fem(scene);
+  const WovenGrid grid(scene, region);
+  const ContinuumShares shares(fem, region);
+  std::vector<std::unique_ptr<Term>> out;
+  for (const auto& term : fem.terms()) {
+    std::vector<RegionTerm::Element> elements;
+    for (int e = 0; e < term->num_elements(); ++e) {
+      const double share = shares.of(*term, e);
+      if (share == 0.0) continue;
+      std::vector<int> stencil;
+      for (int dof : term->stencil(e)) {
+        if (!is_dof(dof)) throw std::logic_error("mixed model: a continuum stencil holds a constant");
+        stencil.push_back(grid.dofs(dof / 3).x + dof % 3);  // vertex v is crossing v
+      }
+      elements.push_back({e, share, std::move(stencil)});
+    }
+    if (!elements.empty()) out.push_back(std::make_unique<RegionTerm>(term->clone(), std::move(elements)));
+  }
+  return out;
+}
+
+MixedModel::MixedModel(const Scene& scene) : MixedModel(checked(scene), region_of(scene)) {}
+
+MixedModel::MixedModel(const Scene& scene, const YarnRegion& region)
+    : YarnModel(scene, region, continuum_terms(scene, region)), rectangles_(rectangles_text(scene.mixed.yarn_region)) {
+  for (int k = 0; k < grid().num_nodes(); ++k) sliding_ = sliding_ || is_dof(grid().dofs(k).u);
+}
+
+Frame MixedModel::frame(double t, const Vec& q, const Vec& v) const {
+  Frame f = YarnModel::frame(t, q, v);
+  DataArray level{"yarn_level", 1, {}};
+  for (int j = 0; j < grid().nv(); ++j)
+    for (int i = 0; i < grid().nu(); ++i) level.values.push_back(region().holds(i, j) ? 1.0 : 0.0);
+  f.point_data.push_back(std::move(level));
+  return f;
+}
+
+std::map<std::string, std::string> MixedModel::describe() const {
+  std::map<std::string, std::string> m = YarnModel::describe();
+  m["model"] = "mixed";
+  m["yarn_region"] = rectangles_;
+  m["yarn_cells"] = std::to_string(region().yarn_cells()) + " of " +
+                    std::to_string((grid().nu() - 1) * (grid().nv() - 1)) + " (the others continuum)";
+  return m;
+}
+
+}  // namespace wl
