@@ -109,7 +109,7 @@ def run(scene, model=None, *, integrator=None, dt=None, duration=None, output_in
     shorter than the scene's output interval shrinks the interval, with a
     notice). With `out` the run also writes its folder (frames, metrics.csv,
     summary.json); without, nothing is written. `model` is "yarn" (woven),
-    "knit" or "fem"; None is the scene's yarn level ("yarn" or "knit"). Returns
+    "knit", "fem" or "mixed"; None is the scene's yarn level ("yarn" or "knit"). Returns
     a Run; a numerical failure is its outcome, Ctrl-C raises
     weavelab.Interrupted holding it."""
     if not isinstance(scene, Scene):
