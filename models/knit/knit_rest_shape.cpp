@@ -11,6 +11,7 @@
 
 #include "models/core/energy_descent.h"
 #include "models/knit/knit_model.h"
+#include "models/knit/knit_scene_error.h"
 
 namespace wl {
 namespace {
@@ -198,13 +199,30 @@ Vec knit_tile_state(const Scene& scene, const KnitRestShape& rest) {
   return q;
 }
 
+namespace {
+
+// A tile that does not relax is a scene the knit model cannot take (its keys
+// are each in range, together they are not): a located SceneError.
+KnitRestShape relaxed_or_refused(const Scene& scene) {
+  try {
+    return relax_knit_tile(scene);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    refuse_knit_scene(scene, "a knit whose periodic rest tile relaxes to static equilibrium (docs/models.md §11.3)",
+                      e.what());
+  }
+}
+
+}  // namespace
+
 const KnitRestShape& relaxed_tile(const Scene& scene) {
   static std::mutex lock;
   static std::map<std::string, KnitRestShape> cache;
   const std::string key = cache_key(scene);
   std::lock_guard<std::mutex> guard(lock);
   auto it = cache.find(key);
-  if (it == cache.end()) it = cache.emplace(key, relax_knit_tile(scene)).first;
+  if (it == cache.end()) it = cache.emplace(key, relaxed_or_refused(scene)).first;
   return it->second;
 }
 

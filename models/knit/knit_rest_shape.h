@@ -55,7 +55,9 @@ struct KnitPeriodRelaxation {
 KnitPeriodRelaxation relax_knit_period(const Scene& scene, int max_steps = 40);
 // The tile state of a rest shape (node positions and coordinates).
 Vec knit_tile_state(const Scene& scene, const KnitRestShape& rest);
-// The same, computed once per pattern and parameters (thread-safe).
+// The same, computed once per pattern and parameters (thread-safe); a tile
+// that does not relax throws a SceneError located at the scene's
+// [cloth.pattern] (knit_scene_error.h).
 const KnitRestShape& relaxed_tile(const Scene& scene);
 
 }  // namespace wl
