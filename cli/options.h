@@ -45,7 +45,8 @@ struct ExperimentArgs {
 void add_experiment_options(CLI::App* command, ExperimentArgs& args, const std::string& default_out);
 
 // Loads the scene and applies --duration; fills path, text, scene, overrides,
-// models (default the scene's yarn level and fem), integrators and progress.
+// models (default the scene's yarn level and fem; each built once, so that a
+// scene error only a model finds comes before any output), integrators and progress.
 template <class Config>
 void load_experiment_scene(const ExperimentArgs& args, CLI::App* command, Config& config) {
   config.scene_path = args.scene;
@@ -55,7 +56,13 @@ void load_experiment_scene(const ExperimentArgs& args, CLI::App* command, Config
   config.models =
       args.models.empty() ? std::vector<std::string>{yarn_level_model(config.scene), "fem"} : split_list(args.models);
   if (config.models.empty()) throw std::invalid_argument("--models: empty list");
-  for (const std::string& m : config.models) (void)model_for_scene(config.scene, m);
+  for (const std::string& m : config.models) {
+    (void)model_for_scene(config.scene, m);
+    // What only the model can refuse (a knit whose rest shape does not relax) is
+    // refused before the study writes anything, as `run` refuses it.
+    check_run_memory(config.scene, m);
+    (void)make_model(config.scene, m);
+  }
   config.integrators = split_list(args.integrators);
   config.progress = !args.quiet;
 }

@@ -34,6 +34,8 @@ int run(CLI::App* wp, const WorkPrecisionArgs& a) {
   if (c.integrators.empty()) c.integrators = integrator_names();
   if (!a.rtols.empty()) c.rtols = split_numbers(a.rtols, "--rtols");
   if (!a.reference_rtols.empty()) c.reference.rtols = split_numbers(a.reference_rtols, "--reference-rtols");
+  for (double rtol : c.rtols) check_rtol("--rtols", rtol);
+  for (double rtol : c.reference.rtols) check_rtol("--reference-rtols", rtol);
   if (positive_option("--dt-min", a.dt_min) > positive_option("--dt-max", a.dt_max))
     throw std::invalid_argument("--dt-min/--dt-max: need 0 < dt-min <= dt-max");
   positive_option("--budget", a.budget);

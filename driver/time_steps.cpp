@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "models/scene/scene_limits.h"
+
 namespace wl {
 
 std::string TimeSteps::describe() const {
@@ -13,15 +15,20 @@ std::string TimeSteps::describe() const {
   return b;
 }
 
+void check_rtol(const std::string& option, double rtol) {
+  // The floor of time.rtol (scene_limits.h), which also keeps atol = 1e-3·rtol > 0 (at_time_steps).
+  if (rtol >= kMinRtol && rtol < 1.0) return;
+  char got[32], floor[32];
+  std::snprintf(got, sizeof got, "%g", rtol);
+  std::snprintf(floor, sizeof floor, "%g", kMinRtol);
+  throw std::invalid_argument(option + ": got " + got + ", expected a tolerance ≥ " + floor +
+                              " and < 1 (smaller tolerances are below round-off)");
+}
+
 TimeSteps parse_time_steps(const std::string& option, const std::string& value, double rtol) {
   if (value != "scene" && value != "controlled")
     throw std::invalid_argument(option + ": got '" + value + "', expected 'controlled' or 'scene'");
-  if (!(rtol > 0.0) || !(rtol < 1.0) || !(1e-3 * rtol > 0.0)) {  // atol = 1e-3·rtol (at_time_steps)
-    char got[32];
-    std::snprintf(got, sizeof got, "%g", rtol);
-    throw std::invalid_argument("--rtol: got " + std::string(got) +
-                                ", expected a tolerance in (0, 1) whose atol = 1e-3·rtol is > 0");
-  }
+  check_rtol("--rtol", rtol);
   return {value == "scene", rtol};
 }
 

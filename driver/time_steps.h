@@ -17,8 +17,13 @@ struct TimeSteps {
   std::string describe() const;
 };
 
-// Parses the value of --time-steps: "scene" or "controlled"; throws
-// std::invalid_argument naming `option` and what was expected.
+// The rule of every relative tolerance a command line gives (--rtol, --rtols):
+// kMinRtol ≤ rtol < 1, as the scene's time.rtol (scene_limits.h); throws
+// std::invalid_argument naming `option`, the value and the rule.
+void check_rtol(const std::string& option, double rtol);
+
+// Parses the value of --time-steps: "scene" or "controlled", and its --rtol
+// (check_rtol); throws std::invalid_argument naming the option and what was expected.
 TimeSteps parse_time_steps(const std::string& option, const std::string& value, double rtol);
 
 // `scene` with the integrator, step control and tolerances of `time_steps`.

@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "models/common/yarn_damper.h"
 #include "models/knit/compression_pairs.h"
 #include "models/knit/image_term.h"
 #include "models/knit/knit_boundary.h"
 #include "models/knit/knit_rest_shape.h"
+#include "models/knit/knit_scene_error.h"
 #include "models/knit/stack_pairs.h"
 #include "models/knit/terms/stitch_compression.h"
 #include "models/knit/terms/stitch_length.h"
@@ -256,17 +259,33 @@ void KnitModel::add_stitch_terms() {
   const KnitPattern& k = *scene_.knit;
   Building<StitchRollTerm> roll;
   Building<StitchLengthTerm> length;
+  // Built only where they act (the tile relaxes without the roll, §11.3).
+  const bool with_roll = k.roll_stiffness_N > 0.0 && !tile_;
+  const bool with_length = k.stitch_length_stiffness_N > 0.0 && scene_.sliding;
   for (const StitchContact& c : graph_.stitches()) {
+    // A term that refuses its rest state refuses the scene, located (knit_scene_error.h).
+    auto located = [&](const std::function<void()>& add) {
+      try {
+        add();
+      } catch (const std::invalid_argument& e) {
+        refuse_knit_scene(scene_, "a knit whose stitches have a non-degenerate rest state (docs/models.md §11.4)",
+                          std::string(e.what()) + " at the stitch contact of courses " + std::to_string(c.course) +
+                              " and " + std::to_string(c.course + 1) + ", wale " + std::to_string(c.wale) + ", " +
+                              (c.side == 0 ? "left" : "right") + (tile_ ? " of the periodic tile" : ""));
+      }
+    };
     const auto [yh, ka] = visit_of_[c.a][0];
     const bool a_first = graph_.next(yh, ka).k == visit_of_[c.b][0].second;
     const int first = a_first ? c.a : c.b, second = a_first ? c.b : c.a;
     const KnitNode &n0 = graph_.node(first), &n1 = graph_.node(second);
     const int yarns = static_cast<int>(n0.u.size());
     const double rest_length = (n1.x - n0.x).norm();
-    for (int slot = 0; slot < yarns; ++slot) {
+    for (int slot = 0; slot < yarns && with_length; ++slot) {
       const auto [y, kf] = visit_of_[first][slot];
       const KnitGraph::Step s = graph_.next(y, kf);
-      length.term->add({n0.coord[slot], n1.coord[slot]}, k.stitch_length_stiffness_N, n1.u[slot] + s.du - n0.u[slot]);
+      located([&] {
+        length.term->add({n0.coord[slot], n1.coord[slot]}, k.stitch_length_stiffness_N, n1.u[slot] + s.du - n0.u[slot]);
+      });
       length.add_shift({0.0, s.du});
     }
     // The node after the segment along a yarn of the pair: the first yarn's
@@ -281,16 +300,18 @@ void KnitModel::add_stitch_terms() {
       shift = visits[s.k].dx + s.dx - visits[ks].dx;
       return visits[s.k].node;
     };
-    for (const StackPair& p : stack_pairs(yarns)) {
+    for (const StackPair& p : with_roll ? stack_pairs(yarns) : std::vector<StackPair>{}) {
       Vec3 shift3 = Vec3::Zero(), shift5 = Vec3::Zero();
       const int n3 = after(p.i, shift3), n5 = after(p.j, shift5);
       if (n3 < 0 || n5 < 0) continue;
       const int x0 = n0.x_dof, x1 = n1.x_dof, x3 = graph_.node(n3).x_dof, x5 = graph_.node(n5).x_dof;
       Eigen::Matrix<double, 12, 1> rest;  // at the initial state: the relaxed rest shape
       rest << q0_.segment<3>(x0), q0_.segment<3>(x1), q0_.segment<3>(x3) + shift3, q0_.segment<3>(x5) + shift5;
-      roll.term->add({x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2, x5, x5 + 1, x5 + 2},
-                     k.roll_stiffness_N, rest_length, StitchRollTerm::angle(rest.data()),
-                     StitchRollTerm::opening(rest.data()));
+      located([&] {
+        roll.term->add({x0, x0 + 1, x0 + 2, x1, x1 + 1, x1 + 2, x3, x3 + 1, x3 + 2, x5, x5 + 1, x5 + 2},
+                       k.roll_stiffness_N, rest_length, StitchRollTerm::angle(rest.data()),
+                       StitchRollTerm::opening(rest.data()));
+      });
       roll.term->tag_last(kRollStiffnessKey, k.roll_stiffness_N);
       roll.add_shift(Vec3::Zero());
       roll.add_shift(Vec3::Zero());
@@ -298,8 +319,8 @@ void KnitModel::add_stitch_terms() {
       roll.add_shift(shift5);
     }
   }
-  if (k.roll_stiffness_N > 0.0 && !tile_) roll.finish(terms_);
-  if (k.stitch_length_stiffness_N > 0.0 && scene_.sliding) length.finish(terms_);
+  if (with_roll) roll.finish(terms_);
+  if (with_length) length.finish(terms_);
 }
 
 // Contact compression (docs/models.md §11.6), in the tile too, so that the rest

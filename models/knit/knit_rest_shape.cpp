@@ -11,6 +11,7 @@
 
 #include "models/core/energy_descent.h"
 #include "models/knit/knit_model.h"
+#include "models/knit/knit_scene_error.h"
 
 namespace wl {
 namespace {
@@ -200,18 +201,38 @@ Vec knit_tile_state(const Scene& scene, const KnitRestShape& rest) {
 
 namespace {
 
+// A tile that does not relax is a scene the knit model cannot take (its keys
+// are each in range, together they are not): a located SceneError.
+KnitRestShape relaxed_or_refused(const Scene& scene) {
+  try {
+    return relax_knit_tile(scene);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    refuse_knit_scene(scene, "a knit whose periodic rest tile relaxes to static equilibrium (docs/models.md §11.3)",
+                      e.what());
+  }
+}
+
 KnitRestShape rest_shape_of(const Scene& scene) {
   if (!(scene.knit->compression_stiffness_N_per_m > 0.0)) {
-    KnitRestShape fixed = relax_knit_tile(scene);
+    KnitRestShape fixed = relaxed_or_refused(scene);
     fixed.period_note = "generated period: without contact compression the tile has no rest period";
     return fixed;
   }
-  KnitPeriodRelaxation relaxed = relax_knit_period(scene);
+  KnitPeriodRelaxation relaxed;
+  try {
+    relaxed = relax_knit_period(scene);
+  } catch (const SceneError&) {
+    throw;
+  } catch (const std::runtime_error& e) {  // the tile at the generated period decides below
+    relaxed.message = std::string("the period did not relax: ") + e.what();
+  }
   if (relaxed.converged) {
     relaxed.rest.period_relaxed = true;
     return relaxed.rest;
   }
-  KnitRestShape fixed = relax_knit_tile(scene);
+  KnitRestShape fixed = relaxed_or_refused(scene);
   fixed.period_note = relaxed.message + "; the generated period is kept";
   return fixed;
 }

@@ -62,7 +62,9 @@ Vec knit_tile_state(const Scene& scene, const KnitRestShape& rest);
 // The rest shape of a knit scene's cloth (docs/models.md §11.3.1): the tile
 // relaxed with its period; at the generated period when the scene has no
 // contact compression (then no rest period exists) or when the period does not
-// relax (period_note says why). Computed once per pattern and parameters (thread-safe).
+// relax (period_note says why). Computed once per pattern and parameters
+// (thread-safe); a tile that does not relax throws a SceneError located at the
+// scene's [cloth.pattern] (knit_scene_error.h).
 const KnitRestShape& relaxed_tile(const Scene& scene);
 
 }  // namespace wl

@@ -17,8 +17,8 @@
 //     kind                   "plain" | "twill" | "satin" | "stockinette" | "garter" | "rib2x2"
 //     courses, wales         knits only: integers ≥ 2 and ≤ 256; garter: courses even (its
 //                            tile is 2 courses); rib2x2: wales a multiple of 4
-//     course_spacing_m       knits only: loop height C > 0 (default 0.8·cloth.spacing_m, the loop width)
-//     over, under, shift     twill only: over, under ≥ 1; 0 < |shift| < over+under;
+//     course_spacing_m       knits only: loop height C ≥ 2·cloth.radius_m when written (default 0.8·cloth.spacing_m,
+//     the loop width) over, under, shift     twill only: over, under ≥ 1; 0 < |shift| < over+under;
 //                            over+under ≤ min(warps, wefts)
 //     harness, step          satin only: 5 ≤ harness ≤ min(warps, wefts);
 //                            1 < step < harness−1, gcd(step, harness) = 1
@@ -166,6 +166,16 @@ void read_knit_pattern(TableReader& p, Scene& s, KnitPattern::Kind kind) {
   p.read_int("wales", k.wales, count, in_range);
   p.read_number("course_spacing_m", k.course_spacing_m, "a number > 0 (m)", positive);
   p.finish("(for a knit kind)");
+  // Consecutive courses' loop heads run side by side at the same depth, C apart
+  // (docs/models.md §11.2): yarns of radius R overlap there unless C ≥ 2R. Checked
+  // on a written C only: the default 0.8·W under the woven default radius R = W/2
+  // fails it, and scenes and tests rely on that default knit.
+  if (k.course_spacing_m != 0.0 && !(k.course_spacing_m >= 2.0 * s.radius_m))
+    p.fail_key("course_spacing_m",
+               "a loop height ≥ 2·cloth.radius_m" + eq(2.0 * s.radius_m) +
+                   " (the loop heads of consecutive courses lie side by side C apart: yarns of radius R overlap "
+                   "below 2R)",
+               format_number(k.course_spacing_m));
   if (k.course_spacing_m == 0.0) k.course_spacing_m = 0.8 * s.spacing_m;
   if (kind == KnitPattern::Kind::garter && k.courses % 2 != 0)
     p.fail_key("courses", "an even number of courses (a garter tile is one knit and one purl course)",

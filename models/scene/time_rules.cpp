@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "models/scene/scene.h"
+#include "models/scene/scene_limits.h"
 #include "models/scene/toml_reader.h"
 
 namespace wl {
@@ -21,10 +22,9 @@ std::optional<SettingViolation> time_settings_violation(const Scene& s,
   for (const auto& [key, value, unit] :
        {std::tuple{T, s.duration_s, " (s)"}, std::tuple{H, s.dt_s, " (s)"}, std::tuple{O, s.output_interval_s, " (s)"}})
     if (!finite_positive(value)) return violation(key, value, std::string("a finite number > 0") + unit);
-  // Below 1e-12 (about 10⁴ ε) a step's round-off is a sizeable part of the
-  // tolerance: error control asked for less cannot deliver it.
-  if (!(s.rtol >= 1e-12 && s.rtol < 1.0))
-    return violation("time.rtol", s.rtol, "a number ≥ 1e-12 and < 1 (smaller tolerances are below round-off)");
+  if (!(s.rtol >= kMinRtol && s.rtol < 1.0))  // scene_limits.h
+    return violation("time.rtol", s.rtol,
+                     "a number ≥ " + format_number(kMinRtol) + " and < 1 (smaller tolerances are below round-off)");
   if (!finite_positive(s.atol)) return violation("time.atol", s.atol, "a finite number > 0");
 
   // Between two values: blame the one stated with more authority.

@@ -13,6 +13,7 @@
 
 #include "models/scene/toml_include.h"
 
+#include "models/scene/format_number.h"
 #include "models/scene/scene.h"
 
 namespace wl::scene_detail {
@@ -34,7 +35,6 @@ class Source {
 };
 
 int line_of(const toml::node& n);
-std::string format_number(double x);  // shortest round-trip form, e.g. "0.001"
 
 // Reads one table. Every read_* call declares its key as known, whether or not
 // it is present; finish() rejects any other key of the table.

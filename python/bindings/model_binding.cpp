@@ -73,14 +73,11 @@ class Simulation {
   // `model` "" is the scene's yarn level (yarn_level_model).
   Simulation(const SceneHandle& scene, const std::string& model) : model_(std::make_shared<ModelHandle>()) {
     const std::string model_name = model.empty() ? yarn_level_model(scene.scene) : model;
-    try {
+    model_->model = in_scene_terms(scene, [&] {
       check_run_settings(scene.scene, {});
-    } catch (const SceneError& e) {
-      if (!scene.edited) throw;
-      raise_scene_error(e, scene.origin);  // the generated text's lines are not the user's
-    }
-    check_run_memory(scene.scene, model_name);
-    model_->model = make_model(scene.scene, model_name);
+      check_run_memory(scene.scene, model_name);
+      return make_model(scene.scene, model_name);
+    });
     check_linear_solver(scene.scene, *model_->model, {});
     integrator_ = make_integrator(scene.scene.integrator);
     options_ = scene_integrator_options(scene.scene);  // as a run: the [time] table
@@ -154,9 +151,11 @@ void bind_model(py::module_& m) {
       "kind None is the scene's yarn level")
       .def(py::init([](const SceneHandle& scene, const std::optional<std::string>& given) {
              const std::string kind = given ? *given : yarn_level_model(scene.scene);
-             check_run_memory(scene.scene, kind);
              auto h = std::make_shared<ModelHandle>();
-             h->model = make_model(scene.scene, kind);
+             h->model = in_scene_terms(scene, [&] {
+               check_run_memory(scene.scene, kind);
+               return make_model(scene.scene, kind);
+             });
              return h;
            }),
            py::arg("scene"), py::arg("kind") = py::none())

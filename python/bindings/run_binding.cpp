@@ -38,21 +38,17 @@ py::dict run(const SceneHandle& handle, const std::string& model, const std::opt
   RunOptions opt;
   opt.model = model.empty() ? yarn_level_model(scene) : model;  // "": the scene's yarn level
   opt.progress = progress;
-  try {
-    apply_run_overrides(scene, ov, opt.overrides);  // the command line's rules, the forgiving one included
-  } catch (const SceneError& e) {
-    if (!handle.edited) throw;
-    raise_scene_error(e, handle.origin);  // the generated text's lines are not the user's
-  }
+  in_scene_terms(handle, [&] {  // the command line's rules, the forgiving one included
+    apply_run_overrides(scene, ov, opt.overrides);
+  });
   if (out) opt.out_dir = output_folder(out, {});
   FrameStack frames;
   opt.on_frame = [&](const Frame& f) { frames.add(f); };
-  RunReport rep;
-  {
-    CallInterruption interruption;  // the driver ends the run after the step under way
+  const RunReport rep = in_scene_terms(handle, [&] {  // a knit only its model refuses
+    CallInterruption interruption;                    // the driver ends the run after the step under way
     py::gil_scoped_release release;
-    rep = run_scene(scene, opt);
-  }
+    return run_scene(scene, opt);
+  });
   py::dict d = frames.arrays();
   d["outcome"] = to_string(rep.result.outcome);
   d["message"] = rep.result.message;

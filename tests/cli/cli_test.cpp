@@ -483,6 +483,7 @@ TEST_F(Cli, CalibrateRejectsBadTestsLaddersAndPatchesBeforeWriting) {
       {"--resolution coarse", "--resolution: got 'coarse', expected 'controlled' or 'scene'"},  // the old name
       {"--time-steps scene --resolution scene", "expected only one of the two"},
       {"--rtol 2", "--rtol: got 2"},
+      {"--rtol 1e-13", "--rtol: got 1e-13, expected a tolerance ≥ 1e-12"},  // the floor of time.rtol
   };
   expect_calibrate_rejected(kHangingWind, cases);
 }

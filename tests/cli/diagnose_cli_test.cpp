@@ -45,6 +45,7 @@ TEST_F(DiagnoseCli, BadInputIsExit2AndWritesNothing) {
   } cases[] = {
       {"--time-steps fine", "--time-steps: got 'fine'"},
       {"--rtol -1", "--rtol"},
+      {"--rtol 1e-13", "--rtol: got 1e-13, expected a tolerance ≥ 1e-12"},  // the floor of time.rtol
       {"--duration -0.1", "--duration"},
       {"--fem-params '" + (dir_ / "absent.toml").string() + "'", "absent.toml"},
   };

@@ -50,6 +50,7 @@ TEST_F(FidelityCli, ToleranceMustBePositive) {
 TEST_F(FidelityCli, ResolutionMustBeKnown) {
   expect_refused("--time-steps fine", {"--time-steps", "'fine'", "'controlled' or 'scene'"});
   expect_refused("--rtol 0", {"--rtol", "got 0"});
+  expect_refused("--rtol 1e-13", {"--rtol: got 1e-13, expected a tolerance ≥ 1e-12"});  // the floor of time.rtol
 }
 
 TEST_F(FidelityCli, ContinuumReferenceIsRefused) {

@@ -95,6 +95,8 @@ TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
       {"--free contact.shear_modulus_Pa --model fem", "does not depend on it"},
       {"--free contact.shear_modulus_Pa --time-steps controlled --integrator be-linear", "runs sdirk2"},
       {"--free contact.shear_modulus_Pa --time-steps fine", "--time-steps"},
+      {"--free contact.shear_modulus_Pa --time-steps controlled --rtol 1e-13",
+       "--rtol: got 1e-13, expected a tolerance ≥ 1e-12"},  // the floor of time.rtol
       {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=9e2,contact.friction_coefficient=0.3",
        "not among the fitted keys"},
       {"--free contact.shear_modulus_Pa --start-set contact.shear_modulus_Pa=x", "--start"},

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "driver/memory_estimate.h"
 #include "models/scene/scene.h"
@@ -220,3 +221,80 @@ TEST_F(UpFrontChecks, ARefusedIntegratorNamesTheScenesOwnConstraint) {
 }
 
 }  // namespace
+
+// A loop height below the yarn's diameter: consecutive courses' loop heads,
+// side by side C apart, would overlap (docs/models.md §11.2); refused by the
+// reader at the key before any subcommand builds the crushed knit.
+TEST_F(UpFrontChecks, AKnitLoopHeightBelowTheYarnDiameterIsRefusedAtTheKey) {
+  const std::string knit = wl::test::hanging_knit_toml(3, 3);
+  const fs::path scene =
+      write("squashed.toml", std::string(knit).insert(knit.find("courses = "), "course_spacing_m = 1e-12\n"));
+  for (const char* subcommand : {"run", "info", "calibrate"}) {
+    const Result r = std::string(subcommand) == "info" ? cli("info " + shell_quote(scene.string()))
+                                                       : command(subcommand, scene, out());
+    EXPECT_EQ(r.exit_code, 2) << subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r,
+                    "squashed.toml:7: key 'cloth.pattern.course_spacing_m': got 1e-12, expected a loop height ≥ "
+                    "2·cloth.radius_m (= 0.0004)"))
+        << subcommand << "\n"
+        << r.output;
+    EXPECT_FALSE(fs::exists(out())) << subcommand;
+  }
+}
+
+// A knit whose keys are each in range but whose periodic rest tile does not
+// relax (a stitch-length stiffness 10¹⁰ times the yarn's k_s): only the model
+// can tell, and every subcommand that builds it refuses the scene as the
+// reader would, located at its [cloth.pattern] with the values the rest
+// depends on, exit 2, nothing written.
+TEST_F(UpFrontChecks, AKnitWhoseRestTileDoesNotRelaxIsExit2LocatedFromEverySubcommand) {
+  std::string text = wl::test::hanging_knit_toml(3, 3);
+  text.replace(text.find("sliding = false"), 15, "sliding = true");  // the stitch-length penalty acts on sliding
+  text.insert(text.find("roll_stiffness_N"), "stitch_length_stiffness_N = 1e9\n");
+  const fs::path scene = write("stiff.toml", text);
+  for (const char* subcommand : {"run", "info", "diagnose", "modes", "fidelity", "stability", "work-precision"}) {
+    const Result r = std::string(subcommand) == "info" ? cli("info " + shell_quote(scene.string()))
+                                                       : command(subcommand, scene, out());
+    EXPECT_EQ(r.exit_code, 2) << subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r, "stiff.toml:6: key 'cloth.pattern': got ") && has(r, "knit.stitch_length_stiffness_N = 1e+09") &&
+                has(r, "expected a knit whose periodic rest tile relaxes to static equilibrium") &&
+                has(r, "did not converge"))
+        << subcommand << "\n"
+        << r.output;
+    EXPECT_FALSE(fs::exists(out())) << subcommand;
+  }
+}
+
+// A stitch whose rest length is below the resolution of the yarn's arc length
+// (a 1e-20 m yarn in 2e-20 m high loops 2 mm wide): the stitch-length term's
+// refusal names the scene, its [cloth.pattern] and the stitch, exit 2.
+TEST_F(UpFrontChecks, AStitchTermsRefusalIsLocatedInTheScene) {
+  std::string text = wl::test::hanging_knit_toml(3, 3);
+  text.replace(text.find("sliding = false"), 15, "sliding = true");
+  text.replace(text.find("radius_m = 2e-4"), 15, "radius_m = 1e-20");
+  text.insert(text.find("courses = "), "course_spacing_m = 2e-20\n");
+  const fs::path scene = write("thin.toml", text);
+  for (const char* subcommand : {"run", "diagnose"}) {
+    const Result r = command(subcommand, scene, out());
+    EXPECT_EQ(r.exit_code, 2) << subcommand << "\n" << r.output;
+    EXPECT_TRUE(has(r, "thin.toml:6: key 'cloth.pattern': got ") && has(r, "cloth.radius_m = 1e-20") &&
+                has(r, "expected a knit whose stitches have a non-degenerate rest state") &&
+                has(r, "StitchLengthTerm") && has(r, "at the stitch contact of courses"))
+        << subcommand << "\n"
+        << r.output;
+    EXPECT_FALSE(fs::exists(out())) << subcommand;
+  }
+}
+
+// The floor of time.rtol holds for work-precision's ladders as for every --rtol
+// (check_rtol, driver/time_steps.h): exit 2 before any run, nothing written.
+TEST_F(UpFrontChecks, WorkPrecisionTolerancesBelowTheRtolFloorAreExit2) {
+  for (const auto& [options, says] :
+       {std::pair{"--rtols 1e-4,1e-13", "--rtols: got 1e-13, expected a tolerance ≥ 1e-12"},
+        std::pair{"--reference-rtols 1e-13", "--reference-rtols: got 1e-13, expected a tolerance ≥ 1e-12"}}) {
+    const Result r = command("work-precision", tiny(), out(), options);
+    EXPECT_EQ(r.exit_code, 2) << options << "\n" << r.output;
+    EXPECT_TRUE(has(r, says)) << options << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out())) << options;
+  }
+}

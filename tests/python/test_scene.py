@@ -110,5 +110,35 @@ class RunArguments(unittest.TestCase):
         self.assertIn("leapfrog", str(e.exception))
 
 
+class KnitsOnlyTheModelRefuses(unittest.TestCase):
+    """A knit whose keys are each in range but whose periodic rest tile does not relax
+    (a stitch-length stiffness 10^10 times the yarn's): weavelab.SceneError at the file's
+    [cloth.pattern] line, or for an edited scene at its origin (line 0), from Model,
+    Simulation and run alike."""
+    KNIT = ("[cloth]\nspacing_m = 2e-3\nradius_m = 2e-4\nsliding = true\n[cloth.pattern]\n"
+            "kind = \"stockinette\"\ncourses = 3\nwales = 3\n[knit]\nstitch_length_stiffness_N = {}\n"
+            "[time]\nduration_s = 0.004\noutput_interval_s = 0.002\n")
+
+    def expect_refused(self, scene, file, line):
+        for make in (weavelab.Model, weavelab.Simulation, weavelab.run):
+            with self.assertRaises(weavelab.SceneError) as e:
+                make(scene)
+            self.assertEqual((e.exception.file, e.exception.line, e.exception.key), (file, line, "cloth.pattern"))
+            self.assertIn("knit.stitch_length_stiffness_N = 1e+09", str(e.exception))
+            self.assertIn("periodic rest tile relaxes", str(e.exception))
+
+    def test_from_a_file_and_edited(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "stiff.toml")
+            with open(path, "w") as f:
+                f.write(self.KNIT.format("1e9"))
+            self.expect_refused(weavelab.load_scene(path), path, 6)
+            with open(path, "w") as f:
+                f.write(self.KNIT.format("0.1"))
+            edited = weavelab.load_scene(path)
+            edited["knit.stitch_length_stiffness_N"] = 1e9
+            self.expect_refused(edited, path, 0)
+
+
 if __name__ == "__main__":
     unittest.main()
