@@ -270,13 +270,18 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
   CsvTable frames(c.out_dir / "frames.csv",
                   {"time_s", "start_rms_m", "final_rms_m", "point", "target_x", "target_y", "target_z", "start_x",
                    "start_y", "start_z", "fitted_x", "fitted_y", "fitted_z"});
+  // A simulation that failed (a numerical outcome, in the message) holds fewer
+  // frames than the target: the frames it did not reach are NaN.
+  auto value_at = [](const std::vector<double>& v, size_t k) { return k < v.size() ? num(v[k]) : std::string("nan"); };
+  auto coordinate_at = [](const std::vector<Vec>& v, size_t k, Eigen::Index i) {
+    return k < v.size() && i < v[k].size() ? num(v[k][i]) : std::string("nan");
+  };
   for (size_t k = 0; k < r.times.size(); ++k) {
-    std::vector<std::string> row{num(r.times[k]), num(r.start_rms[k]),
-                                 k < r.final_rms.size() ? num(r.final_rms[k]) : "nan", std::to_string(tracked)};
+    std::vector<std::string> row{num(r.times[k]), value_at(r.start_rms, k), value_at(r.final_rms, k),
+                                 std::to_string(tracked)};
     for (int c3 = 0; c3 < 3; ++c3) row.push_back(num(p.target[k].points(tracked, c3)));
-    for (int c3 = 0; c3 < 3; ++c3) row.push_back(num(r.start_positions[k][3 * tracked + c3]));
-    for (int c3 = 0; c3 < 3; ++c3)
-      row.push_back(k < r.final_positions.size() ? num(r.final_positions[k][3 * tracked + c3]) : "nan");
+    for (int c3 = 0; c3 < 3; ++c3) row.push_back(coordinate_at(r.start_positions, k, 3 * tracked + c3));
+    for (int c3 = 0; c3 < 3; ++c3) row.push_back(coordinate_at(r.final_positions, k, 3 * tracked + c3));
     frames.row(row);
   }
   frames.commit();

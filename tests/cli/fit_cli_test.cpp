@@ -81,6 +81,34 @@ TEST_F(FitCli, RecoversTheShearModulusWithControlledTimeSteps) {
   EXPECT_NEAR(std::stod(json.str().substr(at + key.size())), 1000.0, 10.0);  // 1 %, from 50 % off
 }
 
+// A start that does not simulate (a yarn a 10^294 times too stiff: the first
+// step crosses sliding coordinates) is a numerical outcome, exit 1, with its
+// record complete: frames.csv holds NaN where the start reached no frame.
+TEST_F(FitCli, AStartThatDoesNotSimulateIsExit1WithACompleteRecord) {
+  std::string stiff = test::read_text(fs::path(WEAVELAB_SOURCE_DIR) / "tests/fuzz/inputs/woven.toml");
+  const std::string key = "stretch_modulus_Pa = ";
+  const size_t at = stiff.find(key);
+  ASSERT_NE(at, std::string::npos);
+  stiff.replace(at + key.size(), stiff.find('\n', at) - at - key.size(), "1e300");
+  const fs::path woven = dir_ / "woven.toml", stiff_scene = dir_ / "stiff.toml";
+  std::ofstream(woven) << test::read_text(fs::path(WEAVELAB_SOURCE_DIR) / "tests/fuzz/inputs/woven.toml");
+  std::ofstream(stiff_scene) << stiff;
+  const auto target_run = cli("run " + test::shell_quote(woven.string()) + " --quiet --out " +
+                              test::shell_quote((dir_ / "woven_target").string()));
+  ASSERT_EQ(target_run.exit_code, 0) << target_run.output;
+  const fs::path out = dir_ / "stiff_fit";
+  const auto r = cli("fit " + test::shell_quote(stiff_scene.string()) + " --target " +
+                     test::shell_quote((dir_ / "woven_target").string()) +
+                     " --free contact.shear_modulus_Pa --frames 1 --max-iterations 1 --quiet --out " +
+                     test::shell_quote(out.string()));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("the start does not simulate"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "frames.csv.part"));
+  const std::string frames = test::read_text(out / "frames.csv");
+  EXPECT_NE(frames.find("\n"), std::string::npos);
+  EXPECT_NE(frames.find(",nan,nan,"), std::string::npos) << frames;
+}
+
 TEST_F(FitCli, BadInputIsExit2AndWritesNothing) {
   const fs::path out = dir_ / "never";
   const struct {
