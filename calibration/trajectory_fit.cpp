@@ -147,6 +147,9 @@ class Simulator {
       const std::unique_ptr<Model> model = make_model(s, opt_.model);
       const std::unique_ptr<Integrator> in = make_integrator(integrator_);
       in->track_sensitivities(opt_.free);
+      in->on_step = [this](const StepRecord&) {
+        if (stop_requested()) throw Stopped{};
+      };
       IntegratorOptions io;  // the scene's step, or its error control when adaptive
       io.dt = s.dt_s;
       io.adaptive = s.adaptive;
@@ -165,16 +168,21 @@ class Simulator {
     } catch (const std::invalid_argument& e) {  // parameter values the model rejects
       sim.message = e.what();
       return sim;
+    } catch (const Stopped&) {
+      sim.message = "interrupted";
+      return sim;
     }
     sim.ok = true;
     return sim;
   }
+  bool stop_requested() const { return opt_.stop_requested && opt_.stop_requested(); }
 
   const Observation& observation() const { return obs_; }
   int count() const { return count_; }
 
  private:
-  Scene scene_;  // a copy: the fit differentiates F_n and F_u in it
+  struct Stopped {};  // from a step callback, to end a simulation at once
+  Scene scene_;       // a copy: the fit differentiates F_n and F_u in it
   const std::vector<TargetFrame>& frames_;
   const TrajectoryFitOptions& opt_;
   std::string integrator_;
@@ -290,6 +298,7 @@ class Progress final : public ceres::IterationCallback {
         history_(history),
         t0_(Clock::now()) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
+    if (sim_.stop_requested()) return ceres::SOLVER_ABORT;
     history_->push_back(s.cost);
     // θ holds the accepted point (update_state_every_iteration), whose Jacobian Ceres has just asked for.
     if ((s.iteration == 0 || s.step_is_successful) && cache_->last.ok && exp_of(theta_, n_) == cache_->last_p) {
@@ -454,7 +463,8 @@ TrajectoryFitResult fit_frames(const Scene& scene, const std::vector<TargetFrame
   SimulationCache cache;
   const Simulation& first = cache.at(sim, p0);
   if (!first.ok) {
-    result.message = "the start does not simulate: " + first.message;
+    result.interrupted = sim.stop_requested();
+    result.message = result.interrupted ? "interrupted" : "the start does not simulate: " + first.message;
     return finish();
   }
   result.start_rms = frame_rms(first, frames, sim.observation());
@@ -495,8 +505,13 @@ TrajectoryFitResult fit_frames(const Scene& scene, const std::vector<TargetFrame
     result.message = stop_message(summary, progress, opt.max_iterations, stage.frames);
     result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   }
+  if (sim.stop_requested()) {
+    result.interrupted = true;
+    result.converged = result.at_cap = false;
+    result.message = "interrupted";
+  }
   OptimumStatistics stats;
-  if (statistics) {
+  if (statistics && !result.interrupted) {
     stats = optimum_statistics(problem, theta.data(), n);
     result.covariance_message = stats.covariance_message;
     if (stats.covariance.size()) result.correlation = stats.correlation();
@@ -581,6 +596,10 @@ TrajectoryFitResult fit_trajectory(const Scene& scene, const std::vector<TargetF
     result = fit_frames(scene, std::vector<TargetFrame>(frames.begin(), frames.begin() + window[s]), opt, p, lower,
                         upper, last);
     stages.push_back(result.stages.front());
+    if (result.interrupted) {
+      result.message = "interrupted in stage " + std::to_string(s + 1) + " (" + std::to_string(window[s]) + " frames)";
+      break;
+    }
     if (result.final_rms.empty()) {  // it did not simulate: the stages after it cannot start
       if (!last) {
         result.converged = false;

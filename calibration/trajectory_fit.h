@@ -46,6 +46,11 @@ struct TrajectoryFitOptions {
   // increasing, the last equal to the number of frames. Empty: one stage, all frames.
   std::vector<int> window;
   bool progress = false;
+  // Asked after each accepted step of every simulation and after each Ceres
+  // iteration: true ends the fit there, with what it reached so far
+  // (TrajectoryFitResult::interrupted). The command line asks whether SIGINT or
+  // SIGTERM arrived (driver/interrupt.h).
+  std::function<bool()> stop_requested;
 };
 
 // One stage of a growing window (the whole fit when there is no window).
@@ -81,10 +86,11 @@ struct TrajectoryFitResult {
   std::string covariance_message;                // why it is unavailable
   // All from the last stage (values, standard errors, identifiability, convergence),
   // except each parameter's `start` (the first stage's) and the sums over the stages.
-  bool converged = false;  // the last stage met a tolerance of Ceres or the flat-cost rule
-  bool at_cap = false;     // the last stage stopped at max_iterations
-  std::string message;     // why the last stage stopped (with what to change when at its cap)
-  int iterations = 0;      // summed over the stages, as the simulations and times
+  bool converged = false;    // the last stage met a tolerance of Ceres or the flat-cost rule
+  bool at_cap = false;       // the last stage stopped at max_iterations
+  bool interrupted = false;  // stop_requested ended it
+  std::string message;       // why the last stage stopped (with what to change when at its cap)
+  int iterations = 0;        // summed over the stages, as the simulations and times
   int simulations = 0;
   double wall_s = 0.0, cpu_s = 0.0;
   std::vector<TrajectoryFitStage> stages;             // in order; one without a window

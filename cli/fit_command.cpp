@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/options.h"
 #include "driver/fit_command.h"
+#include "driver/interrupt.h"
 #include "driver/run_settings.h"
 
 namespace wl::cli {
@@ -114,6 +115,11 @@ std::vector<FitCommandConfig> start_sets_of(const FitCommandConfig& fitc, const 
 int run_start_sets(const std::vector<FitCommandConfig>& sets, const FitCommandPlan& plan, int jobs) {
   bool all = true;
   const std::vector<TrajectoryFitResult> rs = run_fits(sets, plan, jobs);
+  if (interrupt_signal() != 0) {
+    std::cerr << "weavelab: fit: " << interrupted_message(interrupt_signal())
+              << "; each start's record so far in its folder\n";
+    return interrupted_exit_code(interrupt_signal());
+  }
   for (size_t k = 0; k < rs.size(); ++k) {
     std::cerr << "weavelab: fit: " << sets[k].out_dir.string() << ": " << rs[k].iterations << " iterations, "
               << rs[k].wall_s << " s wall, " << rs[k].cpu_s << " s CPU; " << rs[k].message << "\n";
@@ -142,6 +148,11 @@ void print_frozen(const TrajectoryFitResult& r) {
 int run_one(const FitCommandConfig& fitc, const FitCommandPlan& plan) {
   print_default_window(plan);
   const TrajectoryFitResult r = run_fit(fitc, plan);
+  if (r.interrupted) {
+    std::cerr << "weavelab: fit: " << interrupted_message(interrupt_signal()) << " (" << r.message
+              << "); the record so far in " << fitc.out_dir.string() << "\n";
+    return interrupted_exit_code(interrupt_signal());
+  }
   print_frozen(r);
   if (r.final_rms.empty()) {
     std::cerr << "weavelab: fit: " << r.message << "\n";
@@ -170,6 +181,7 @@ int run(const CLI::App* fit, const FitArgs& a) {
   for (const FitCommandConfig& c : sets) plan_fit(c);  // every input checked; nothing written yet
   const FitCommandPlan plan = plan_fit(fitc);
   if (!sets.empty()) print_default_window(plan);
+  install_interrupt_handlers();
   return sets.empty() ? run_one(fitc, plan) : run_start_sets(sets, plan, a.jobs);
 }
 

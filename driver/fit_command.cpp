@@ -6,6 +6,7 @@
 #include "calibration/fit_continuation.h"
 #include "calibration/scene_parameters.h"
 #include "driver/experiment_meta.h"
+#include "driver/interrupt.h"
 #include "driver/run_settings.h"
 #include "driver/time_error.h"
 #include "driver/time_steps.h"
@@ -151,7 +152,8 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
 }
 
 TrajectoryFitResult run_fit(const FitCommandConfig& config, const FitCommandPlan& p) {
-  const FitCommandConfig c = with_model(config, p);
+  FitCommandConfig c = with_model(config, p);
+  c.fit.stop_requested = [] { return interrupt_signal() != 0; };
   const TrajectoryFitResult r = fit_trajectory(p.scene, p.target, c.fit);
   write_fit(c, p, r);
   return r;
@@ -163,6 +165,7 @@ std::vector<TrajectoryFitResult> run_fits(const std::vector<FitCommandConfig>& c
   std::vector<TrajectoryFitOptions> fits;
   for (const FitCommandConfig& c : configs) {
     starts.push_back(with_model(c, p));
+    starts.back().fit.stop_requested = [] { return interrupt_signal() != 0; };
     fits.push_back(starts.back().fit);
   }
   const std::vector<TrajectoryFitResult> r = fit_trajectories(p.scene, p.target, fits, jobs);
@@ -202,6 +205,10 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
   j.set("covariance_note", r.covariance_message.empty()
                                ? "ceres::Covariance (DENSE_SVD) of log-parameters times the residual variance"
                                : r.covariance_message);
+  j.set("outcome", r.interrupted         ? "interrupted"
+                   : r.final_rms.empty() ? "failed"
+                   : r.converged         ? "converged"
+                                         : "not_converged");
   j.set("converged", r.converged);
   j.set("stopped_at_iteration_cap", r.at_cap);
   j.set("message", r.message);
@@ -238,7 +245,7 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
   add_provenance(j);
   write_file_atomically(c.out_dir / "fit.json", j.dump());
 
-  if (c.fit.model == "fem" && !r.final_rms.empty()) {  // usable as `weavelab run --fem-params`
+  if (c.fit.model == "fem" && !r.final_rms.empty() && !r.interrupted) {  // usable as `weavelab run --fem-params`
     Scene fitted = p.scene;
     for (const TrajectoryFitParameter& fp : r.parameters) set_scene_parameter(fitted, fp.key, fp.value);
     write_fem_parameter_file((c.out_dir / "params.toml").string(), fem_material(fitted),

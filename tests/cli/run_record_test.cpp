@@ -62,8 +62,13 @@ class RunRecord : public ::testing::Test {
   // Starts `weavelab run SCENE --out OUT extra...` with stdout and stderr to
   // `log` (or to `stderr_fd` when ≥ 0); returns its pid.
   pid_t start(const std::string& scene, const fs::path& out, std::vector<std::string> extra = {}, int stderr_fd = -1) {
-    std::vector<std::string> args = {WEAVELAB_CLI, "run", (dir_ / scene).string(), "--out", out.string()};
+    std::vector<std::string> args = {"run", (dir_ / scene).string(), "--out", out.string()};
     args.insert(args.end(), extra.begin(), extra.end());
+    return spawn(args, stderr_fd);
+  }
+  // Starts `weavelab ARGS...` with stdout and stderr to `log` (or stderr to `stderr_fd` when ≥ 0).
+  pid_t spawn(std::vector<std::string> args, int stderr_fd = -1) {
+    args.insert(args.begin(), WEAVELAB_CLI);
     const std::string log = (dir_ / "log.txt").string();
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -130,6 +135,28 @@ TEST_F(RunRecord, SigtermDuringAnAccuracyTrialLeavesAnInterruptedRecord) {
   const std::string summary = read_text(out / "summary.json");
   EXPECT_NE(summary.find("\"verdict\": \"interrupted\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"name\": \"sdirk2\""), std::string::npos) << summary;
+}
+
+// A signal during a fit ends the simulation at its step and the fit at once,
+// with fit.json (outcome `interrupted`), convergence.csv and frames.csv written
+// whole (before, the default action killed it with nothing written).
+TEST_F(RunRecord, SigtermDuringAFitLeavesAnInterruptedRecord) {
+  std::ofstream(dir_ / "half.toml") << scene_text(0.5);
+  ASSERT_EQ(wait_exit(start("half.toml", dir_ / "target", {"--quiet"})), 0) << log();
+  const fs::path out = dir_ / "fit";
+  const pid_t pid =
+      spawn({"fit", (dir_ / "half.toml").string(), "--target", (dir_ / "target").string(), "--free",
+             "contact.shear_modulus_Pa", "--start", "contact.shear_modulus_Pa=1500", "--out", out.string()});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (log().find("fit iteration") == std::string::npos && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ::kill(pid, SIGTERM);
+  EXPECT_EQ(wait_exit(pid), 143) << log();
+  EXPECT_NE(log().find("interrupted by SIGTERM"), std::string::npos) << log();
+  EXPECT_NE(read_text(out / "fit.json").find("\"outcome\": \"interrupted\""), std::string::npos) << log();
+  for (const char* file : {"convergence.csv", "frames.csv"}) EXPECT_TRUE(fs::exists(out / file)) << file;
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_EQ(entry.path().string().find(".part"), std::string::npos) << entry.path();
 }
 
 TEST_F(RunRecord, BrokenStderrPipeKeepsTheRecord) {
