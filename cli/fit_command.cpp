@@ -1,4 +1,5 @@
 // `weavelab fit SCENE --target RUN_DIR`: scene parameters fitted to a recorded run's trajectory.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -115,7 +116,7 @@ std::vector<FitCommandConfig> start_sets_of(const FitCommandConfig& fitc, const 
 int run_start_sets(const std::vector<FitCommandConfig>& sets, const FitCommandPlan& plan, int jobs) {
   bool all = true;
   const std::vector<TrajectoryFitResult> rs = run_fits(sets, plan, jobs);
-  if (interrupt_signal() != 0) {
+  if (std::any_of(rs.begin(), rs.end(), [](const TrajectoryFitResult& r) { return r.interrupted; })) {
     std::cerr << "weavelab: fit: " << interrupted_message(interrupt_signal())
               << "; each start's record so far in its folder\n";
     return interrupted_exit_code(interrupt_signal());

@@ -73,10 +73,12 @@ Json fit_error_budget(const FitCommandConfig& c, const FitCommandPlan& p, const 
 }
 
 // The configuration with the model and the growing window the plan chose (the
-// scene's yarn level for an empty model, the default window of a long fit).
+// scene's yarn level for an empty model, the default window of a long fit), and
+// the stop hook that ends the fit on SIGINT or SIGTERM.
 FitCommandConfig with_model(FitCommandConfig c, const FitCommandPlan& p) {
   c.fit.model = p.model;
   c.fit.window = p.window;
+  c.fit.stop_requested = [] { return interrupt_signal() != 0; };
   return c;
 }
 
@@ -152,8 +154,7 @@ FitCommandPlan plan_fit(const FitCommandConfig& c) {
 }
 
 TrajectoryFitResult run_fit(const FitCommandConfig& config, const FitCommandPlan& p) {
-  FitCommandConfig c = with_model(config, p);
-  c.fit.stop_requested = [] { return interrupt_signal() != 0; };
+  const FitCommandConfig c = with_model(config, p);
   const TrajectoryFitResult r = fit_trajectory(p.scene, p.target, c.fit);
   write_fit(c, p, r);
   return r;
@@ -165,7 +166,6 @@ std::vector<TrajectoryFitResult> run_fits(const std::vector<FitCommandConfig>& c
   std::vector<TrajectoryFitOptions> fits;
   for (const FitCommandConfig& c : configs) {
     starts.push_back(with_model(c, p));
-    starts.back().fit.stop_requested = [] { return interrupt_signal() != 0; };
     fits.push_back(starts.back().fit);
   }
   const std::vector<TrajectoryFitResult> r = fit_trajectories(p.scene, p.target, fits, jobs);
