@@ -9,10 +9,6 @@
 #include <stdexcept>
 #include <thread>
 
-#ifndef WEAVELAB_GIT_REVISION
-#define WEAVELAB_GIT_REVISION "unknown"
-#endif
-
 namespace wl {
 namespace {
 
@@ -247,7 +243,5 @@ std::map<std::string, std::string> machine_info() {
 #endif
   return info;
 }
-
-std::string git_revision() { return WEAVELAB_GIT_REVISION; }
 
 }  // namespace wl

@@ -77,8 +77,9 @@ std::string json_quote(std::string_view text);
 // cpu_cores (hardware threads), compiler (__VERSION__). Missing items read "unknown".
 std::map<std::string, std::string> machine_info();
 
-// The git revision the library was configured from (WEAVELAB_GIT_REVISION;
-// "-dirty" appended when tracked files had changes; "unknown" outside git).
+// The git revision the library was built from ("-dirty" appended when tracked
+// files had changes; "unknown" outside git); defined in a file written at every
+// build (cmake/git_revision.cmake).
 std::string git_revision();
 
 }  // namespace wl
