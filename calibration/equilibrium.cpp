@@ -41,15 +41,21 @@ EquilibriumResult EquilibriumSolver::solve(Vec& q, const EquilibriumOptions& opt
   if (!(opt.descent_tolerance > 0.0)) return newton(q, opt);
   const Vec start = q;
   EquilibriumResult res = newton(q, opt);
-  if (res.converged) return res;
+  if (res.converged || res.stopped) return res;
   // Energy descent from the same start (docs/models.md §11.8), then the stiffness
   // at its end factorized for solve_free().
   q = start;
   factored_ = false;  // Newton's last factor is of another state
-  const DescentResult d = descend_energy(model_, q, held_, opt.descent_tolerance, opt.descent_max_steps);
+  const DescentResult d =
+      descend_energy(model_, q, held_, opt.descent_tolerance, opt.descent_max_steps, opt.stop_requested);
   res.descent_steps = d.steps;
   model_.evaluate(0.0, q, zero_v_, kForce | kDfdq, eval_);
   res.residual = d.residual_N;
+  if (opt.stop_requested && opt.stop_requested()) {
+    res.stopped = true;
+    res.message = "stopped after " + std::to_string(d.steps) + " energy descent steps";
+    return res;
+  }
   if (!(d.residual_N <= opt.descent_tolerance)) {
     std::ostringstream why;
     why << res.message << "; energy descent then stopped at residual " << d.residual_N << " N > "
@@ -89,6 +95,11 @@ EquilibriumResult EquilibriumSolver::newton(Vec& q, const EquilibriumOptions& op
     }
     if (!factored) {
       res.message = "singular stiffness after " + std::to_string(res.iterations) + " iterations";
+      return res;
+    }
+    if (opt.stop_requested && opt.stop_requested()) {
+      res.stopped = true;
+      res.message = "stopped after " + std::to_string(res.iterations) + " Newton iterations";
       return res;
     }
     if (res.iterations >= opt.max_iterations) {

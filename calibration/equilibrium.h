@@ -9,6 +9,7 @@
 // parallel contact only — gravity, wind, handles, friction and inertia are
 // switched off (material_test_scene(), virtual_tests.h). Velocities are zero.
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +30,9 @@ struct EquilibriumOptions {
   // rest shape: indefinite stiffness, docs/models.md §11.8); 0: Newton alone.
   double descent_tolerance = 0.0;
   int descent_max_steps = 4000;
+  // Asked before each Newton iteration and descent step: true ends the solve
+  // there, unconverged (EquilibriumResult::stopped; the command line's SIGINT/SIGTERM).
+  std::function<bool()> stop_requested;
 };
 
 struct EquilibriumResult {
@@ -37,6 +41,7 @@ struct EquilibriumResult {
   double residual = 0.0;  // ‖f_f‖∞ at the returned state [N]
   std::string message;    // why it did not converge
   int descent_steps = 0;  // energy descent steps after a failed Newton solve (descent_tolerance > 0)
+  bool stopped = false;   // EquilibriumOptions::stop_requested ended it
 };
 
 class EquilibriumSolver {

@@ -20,7 +20,7 @@ ResponseCurve FemTestPatch::run(const FemMaterial& material, const std::vector<s
 }
 
 ResponseCurve FemTestPatches::run(const FemMaterial& material, const TestSpec& test,
-                                  const std::vector<std::string>& keys) {
+                                  const std::vector<std::string>& keys, const EquilibriumOptions& options) {
   FemTestPatch* patch = nullptr;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -34,7 +34,7 @@ ResponseCurve FemTestPatches::run(const FemMaterial& material, const TestSpec& t
       patch = entries_.back().patch.get();
     }
   }
-  return patch->run(material, keys);
+  return patch->run(material, keys, options);
 }
 
 }  // namespace wl

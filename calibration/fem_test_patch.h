@@ -44,7 +44,7 @@ class FemTestPatches {
  public:
   explicit FemTestPatches(Scene test_scene) : scene_(std::move(test_scene)) {}
   ResponseCurve run(const FemMaterial& material, const TestSpec& test,
-                    const std::vector<std::string>& parameter_keys = {});
+                    const std::vector<std::string>& parameter_keys = {}, const EquilibriumOptions& options = {});
 
  private:
   struct Entry {

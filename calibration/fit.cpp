@@ -33,12 +33,13 @@ std::vector<std::string> prefixed(const std::vector<std::string>& keys) {
 class CurveCost final : public ceres::CostFunction {
  public:
   CurveCost(const FitCurve& curve, const FemMaterial& base, const std::vector<std::string>& free,
-            const ContinuumTest& continuum, bool relative, int* evaluations)
+            const ContinuumTest& continuum, bool relative, const std::function<bool()>& stop, int* evaluations)
       : curve_(curve),
         base_(base),
         free_(free),
         keys_(prefixed(free)),
         continuum_(continuum),
+        stop_(stop),
         evaluations_(evaluations) {
     double range = 0.0;
     for (double r : curve.target) range = std::max(range, std::abs(r));
@@ -53,6 +54,7 @@ class CurveCost final : public ceres::CostFunction {
   }
 
   bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
+    if (stop_ && stop_()) return false;  // the iteration callback then ends the solve
     FemMaterial m = base_;
     for (size_t k = 0; k < free_.size(); ++k) material_value(m, free_[k]) = std::exp(x[0][k]);
     if (!stretch_law_admissible(m)) return false;  // a non-convex stretch law: Ceres retries a smaller step
@@ -75,6 +77,7 @@ class CurveCost final : public ceres::CostFunction {
   FemMaterial base_;
   std::vector<std::string> free_, keys_;
   const ContinuumTest& continuum_;
+  const std::function<bool()>& stop_;
   int* evaluations_;
   std::vector<double> weight_;  // per point
 };
@@ -92,17 +95,30 @@ std::vector<std::string> stretch_keys(const FemMaterial& guess, bool warp, bool 
   return keys;
 }
 
+// The progress line of each iteration (when `print`), the last accepted iterate θ and its cost
+// (Ceres hands back the start when a stop ends the solve), and the end of the solve when `stop` says so.
 class Progress final : public ceres::IterationCallback {
  public:
-  explicit Progress(int start) : start_(start) {}
+  Progress(int start, bool print, const std::function<bool()>& stop, const std::vector<double>& theta)
+      : start_(start), print_(print), stop_(stop), theta_(theta) {}
+  std::vector<double> accepted;  // empty before the first iteration
+  double accepted_cost = 0.0;
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
-    std::fprintf(stderr, "  fit start %d: iteration %d, cost %.6g, |gradient| %.3g\n", start_, s.iteration, s.cost,
-                 s.gradient_max_norm);
-    return ceres::SOLVER_CONTINUE;
+    if (s.iteration == 0 || s.step_is_successful) {  // θ holds it (update_state_every_iteration)
+      accepted = theta_;
+      accepted_cost = s.cost;
+    }
+    if (print_)
+      std::fprintf(stderr, "  fit start %d: iteration %d, cost %.6g, |gradient| %.3g\n", start_, s.iteration, s.cost,
+                   s.gradient_max_norm);
+    return stop_ && stop_() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
   }
 
  private:
   int start_;
+  bool print_;
+  const std::function<bool()>& stop_;
+  const std::vector<double>& theta_;
 };
 
 struct Run {
@@ -208,6 +224,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
   std::vector<StartOutcome> outcomes(num_starts);
   std::vector<int> evaluations(num_starts, 0);
   auto solve_start = [&](int s) {
+    if (opt.stop_requested && opt.stop_requested()) return;  // not started (no start values in its outcome)
     Run& run = runs[s];
     run.theta = start_theta[s];
     StartOutcome& outcome = outcomes[s];
@@ -221,8 +238,9 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
       ceres::LossFunction* loss = nullptr;
       if (opt.loss == "huber") loss = new ceres::HuberLoss(0.05);
       else if (opt.loss == "cauchy") loss = new ceres::CauchyLoss(0.05);
-      run.problem->AddResidualBlock(new CurveCost(c, base, free, continuum, relative, &evaluations[s]), loss,
-                                    run.theta.data());
+      run.problem->AddResidualBlock(
+          new CurveCost(c, base, free, continuum, relative, opt.stop_requested, &evaluations[s]), loss,
+          run.theta.data());
     }
     for (int k = 0; k < n; ++k) {
       run.problem->SetParameterLowerBound(run.theta.data(), k, lower[k]);
@@ -239,23 +257,32 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     so.parameter_tolerance = 1e-10;
     so.num_threads = 1;  // Ceres' threads would sum the curves' costs in a varying order
     so.logging_type = ceres::SILENT;
-    Progress progress(s + 1);
-    if (opt.progress) {
-      so.callbacks.push_back(&progress);
-      std::fprintf(stderr, "  fit start %d of %d\n", s + 1, num_starts);
-    }
+    so.update_state_every_iteration = true;  // θ holds the last iterate when a stop ends the solve
+    Progress progress(s + 1, opt.progress, opt.stop_requested, run.theta);
+    so.callbacks.push_back(&progress);
+    if (opt.progress) std::fprintf(stderr, "  fit start %d of %d\n", s + 1, num_starts);
     ceres::Solve(so, run.problem.get(), &run.summary);
     outcome.usable = run.summary.IsSolutionUsable();
-    outcome.cost = run.summary.final_cost;
+    const bool stopped = !outcome.usable && !progress.accepted.empty();  // a stop or failure: as far as it got
+    outcome.cost = stopped ? progress.accepted_cost : run.summary.final_cost;
     outcome.iterations = static_cast<int>(run.summary.iterations.size()) - 1;
     outcome.message = run.summary.message;
-    for (int k = 0; k < n; ++k) outcome.value.push_back(std::exp(run.theta[k]));
+    for (int k = 0; k < n; ++k) outcome.value.push_back(std::exp(stopped ? progress.accepted[k] : run.theta[k]));
   };
   if (opt.loss != "none" && opt.loss != "huber" && opt.loss != "cauchy")
     throw std::invalid_argument("unknown loss '" + opt.loss + "', expected none, huber or cauchy");
   const int threads = opt.threads > 0 ? opt.threads : static_cast<int>(std::thread::hardware_concurrency());
   run_starts(num_starts, threads, solve_start);
 
+  if (opt.stop_requested && opt.stop_requested()) {  // each start begun, as far as it got
+    for (const StartOutcome& o : outcomes)
+      if (!o.start.empty()) result.starts.push_back(o);
+    for (int e : evaluations) result.evaluations += e;
+    result.interrupted = true;
+    result.message = "interrupted";
+    result.material = base;
+    return result;
+  }
   Run best;
   double best_cost = std::numeric_limits<double>::infinity();
   for (int s = 0; s < num_starts; ++s) {

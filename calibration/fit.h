@@ -43,6 +43,10 @@ struct FitOptions {
   int max_iterations = 100;
   bool progress = false;
   int threads = 0;  // starts run at once (0: one per hardware thread); the result does not depend on it
+  // Asked after each Ceres iteration and before each curve evaluation: true ends
+  // every start there (FitResult::interrupted); the command line asks whether
+  // SIGINT or SIGTERM arrived. The continuum tests take their own hook.
+  std::function<bool()> stop_requested;
 };
 
 struct FittedParameter {
@@ -77,6 +81,7 @@ struct FitResult {
   int evaluations = 0;  // curve evaluations over all starts
   double wall_s = 0, cpu_s = 0;
   bool converged = false;
+  bool interrupted = false;  // stop_requested ended it: starts as far as they got, no optimum statistics
   std::string message;
 };
 

@@ -394,6 +394,7 @@ ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const TestP
     const EquilibriumResult r = eq.solve(q, options);
     if (!r.converged) {
       curve.complete = false;
+      curve.stopped = r.stopped;
       curve.message = test_name(test) + " at rest (λ = 0): " + r.message;
       return curve;
     }
@@ -409,6 +410,7 @@ ResponseCurve run_material_test(Model& model, EquilibriumSolver& eq, const TestP
       std::ostringstream m;
       m << test_name(test) << " at " << lambda << " " << load_unit(test.kind) << ": " << r.message;
       curve.complete = false;
+      curve.stopped = r.stopped;
       curve.message = m.str();
       break;
     }
@@ -445,12 +447,12 @@ ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const
 
 std::vector<ResponseCurve> run_yarn_tests(const Scene& test_scene, const std::vector<TestSpec>& tests, int threads,
                                           const std::function<void(int, const ResponseCurve&)>& done,
-                                          std::vector<ResponsePoint>* at_rest) {
+                                          std::vector<ResponsePoint>* at_rest, const EquilibriumOptions& options) {
   std::vector<ResponseCurve> curves(tests.size());
   if (at_rest) at_rest->assign(tests.size(), ResponsePoint{});
   std::mutex report;
   run_starts(static_cast<int>(tests.size()), threads, [&](int k) {
-    curves[k] = run_yarn_test(test_scene, tests[k], {}, at_rest ? &(*at_rest)[k] : nullptr);
+    curves[k] = run_yarn_test(test_scene, tests[k], options, at_rest ? &(*at_rest)[k] : nullptr);
     if (!done) return;
     std::lock_guard<std::mutex> lock(report);
     done(k, curves[k]);

@@ -115,6 +115,7 @@ struct ResponseCurve {
   std::string message;
   // d response / d p for each requested parameter key, per point (continuum).
   std::vector<std::vector<double>> sensitivities;  // [point][parameter]
+  bool stopped = false;                            // EquilibriumOptions::stop_requested ended it (not complete)
 };
 
 // The points a test moves: the x DoF of each, its rest offset from the patch
@@ -166,10 +167,12 @@ ResponseCurve run_yarn_test(const Scene& test_scene, const TestSpec& test, const
 // The yarn level's curves of several tests, `threads` at a time (≤ 1: in order).
 // Each test runs on its own model, so the curves are bitwise those of one test
 // after another; `done(k, curve)` is called as test k ends, one call at a time;
-// `at_rest`, if given, receives each test's R(0) as run_yarn_test's.
+// `at_rest`, if given, receives each test's R(0) as run_yarn_test's; `options` are each test's
+// (with a stop hook, every test ends at its Newton iteration).
 std::vector<ResponseCurve> run_yarn_tests(const Scene& test_scene, const std::vector<TestSpec>& tests, int threads,
                                           const std::function<void(int, const ResponseCurve&)>& done = {},
-                                          std::vector<ResponsePoint>* at_rest = nullptr);
+                                          std::vector<ResponsePoint>* at_rest = nullptr,
+                                          const EquilibriumOptions& options = {});
 struct FemMaterial;
 struct FemMesh;
 class FemModel;

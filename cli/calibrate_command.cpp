@@ -9,6 +9,7 @@
 #include "cli/exit_codes.h"
 #include "cli/options.h"
 #include "driver/calibrate.h"
+#include "driver/interrupt.h"
 #include "driver/run_settings.h"
 
 namespace wl::cli {
@@ -108,8 +109,14 @@ CalibrateConfig config_of(const CLI::App* calibrate, const CalibrateArgs& a) {
 int run(const CLI::App* calibrate, const CalibrateArgs& a) {
   const CalibrateConfig cal = config_of(calibrate, a);
   const CalibratePlan plan = plan_calibration(cal);  // every input checked; nothing written yet
+  install_interrupt_handlers();
   return numerical_failure_is_exit_1("calibrate", [&] {
     const CalibrateSummary r = run_calibration(cal, plan);
+    if (!r.interrupted_in.empty()) {
+      std::cerr << "weavelab: calibrate: " << interrupted_message(interrupt_signal()) << " in " << r.interrupted_in
+                << "; the record so far in " << cal.out_dir.string() << "\n";
+      return interrupted_exit_code(interrupt_signal());
+    }
     std::cerr << "weavelab: calibrate: yarn tests " << r.yarn_tests_s << " s, continuum tests " << r.fem_tests_s
               << " s, fit " << r.fit_s << " s, validation " << r.validation_s << " s; results in "
               << cal.out_dir.string() << "\n";

@@ -17,6 +17,7 @@
 #include "calibration/first_guess.h"
 #include "calibration/knit_test_patch.h"
 #include "driver/experiment_meta.h"
+#include "driver/interrupt.h"
 #include "driver/recorded_run.h"
 #include "driver/run_settings.h"
 #include "models/fem/fem_model.h"
@@ -64,6 +65,7 @@ VariantRun run_continuum_variant(const std::string& name, const Scene& scene, co
   rec.progress = progress;
   rec.label = name;
   rec.step_ends = true;  // for its time error estimate
+  rec.on_step = [](Model&, double, const Vec&, const Vec&) { throw_if_interrupted(); };
   rec.on_frame = [&](const Frame& f) {
     if (k >= yarn.size()) return;
     Vec q(3 * f.points.rows());
@@ -250,6 +252,13 @@ CalibratePlan plan_calibration(const CalibrateConfig& c) {
 
 namespace {
 
+// Equilibrium solves that end at their Newton iteration (or descent step) on SIGINT or SIGTERM.
+EquilibriumOptions stoppable() {
+  EquilibriumOptions o;
+  o.stop_requested = [] { return interrupt_signal() != 0; };
+  return o;
+}
+
 // The yarn level's response per test: the fit's targets, and R(0) per test (knits).
 struct YarnCurves {
   std::vector<FitCurve> curves;
@@ -268,7 +277,8 @@ YarnCurves yarn_level_curves(const CalibrateConfig& c, const CalibratePlan& p) {
           std::fprintf(stderr, "  yarn %-14s %zu/%zu loads%s %s\n", test_name(p.tests[k]).c_str(), r.points.size(),
                        p.tests[k].ladder.size(), r.complete ? "" : ", stopped:", r.message.c_str());
       },
-      &rests);
+      &rests, stoppable());
+  throw_if_interrupted();
   YarnCurves out;
   for (size_t k = 0; k < p.tests.size(); ++k) {
     const TestSpec& t = p.tests[k];
@@ -335,6 +345,7 @@ YarnValidation run_yarn_validation(const Scene& vs, const std::string& label, co
   rec.progress = progress;
   rec.label = label + " yarn";
   rec.step_ends = true;
+  rec.on_step = [](Model&, double, const Vec&, const Vec&) { throw_if_interrupted(); };
   rec.on_frame = [&](const Frame& f) {
     CrossingFrame cf;
     cf.x = f.points;
@@ -364,6 +375,7 @@ Json validate_variant(const CalibrateConfig& c, const Scene& vs, const std::stri
   variant_scene.fem.grid_line_bending = c.grid_line_bending && name != "first_guess";
   const VariantRun vr = run_continuum_variant(name, variant_scene, yarn.frames, iopt, c.progress);
   const TimeErrorEstimate fem_error = estimate_time_error(variant_scene, "fem", vs.integrator, iopt, vr.run);
+  throw_if_interrupted();  // the estimate ends its second run at a signal
   for (size_t k = 0; k < vr.times.size(); ++k)
     vcsv.row({label, name, csv_number(vr.times[k]), csv_number(vr.rms[k]), csv_number(vr.max[k])});
   const RecordedRun& yr = yarn.run;
@@ -411,6 +423,7 @@ Json validate_scene(const CalibrateConfig& c, const CalibratePlan& p, size_t s, 
   // Each side's time error beside the distance (docs/models.md §7.8).
   if (c.progress) std::fprintf(stderr, "  validation %s: yarn-level time error\n", label.c_str());
   const TimeErrorEstimate yarn_error = estimate_time_error(vs, yarn_level_model(vs), vs.integrator, iopt, yarn.run);
+  throw_if_interrupted();
   entry.set("yarn_time_error", yarn_error.to_json());
   Json vars = Json::array();
   for (const auto& [name, m] : variants) vars.push(validate_variant(c, vs, label, name, m, yarn, yarn_error, vcsv));
@@ -418,14 +431,19 @@ Json validate_scene(const CalibrateConfig& c, const CalibratePlan& p, size_t s, 
   return entry;
 }
 
-// 4. Validation on motion: validation.csv and the records of calibration.json.
-Json validate_on_motion(const CalibrateConfig& c, const CalibratePlan& p, const FemMaterial& calibrated) {
-  Json validation = Json::array();
-  if (p.validation_scenes.empty()) return validation;
+// 4. Validation on motion: validation.csv and the records of calibration.json, one per scene
+// validated. On a signal validation.csv is closed with the rows so far and Interrupted passes on.
+void validate_on_motion(const CalibrateConfig& c, const CalibratePlan& p, const FemMaterial& calibrated,
+                        Json& validation) {
+  if (p.validation_scenes.empty()) return;
   CsvTable vcsv(c.out_dir / "validation.csv", std::vector<std::string>{"scene", "variant", "time_s", "rms_m", "max_m"});
-  for (size_t s = 0; s < p.validation_scenes.size(); ++s) validation.push(validate_scene(c, p, s, calibrated, vcsv));
+  try {
+    for (size_t s = 0; s < p.validation_scenes.size(); ++s) validation.push(validate_scene(c, p, s, calibrated, vcsv));
+  } catch (const Interrupted&) {
+    vcsv.commit();
+    throw;
+  }
   vcsv.commit();
-  return validation;
 }
 
 // params.toml: the calibrated parameters with their provenance.
@@ -517,6 +535,7 @@ Json starts_json(const FitResult& fit) {
 Json fit_json(const CalibrateConfig& c, const FitResult& r) {
   Json fit = Json::object();
   fit.set("converged", r.converged);
+  fit.set("interrupted", r.interrupted);
   fit.set("message", r.message);
   fit.set("cost", r.cost);
   fit.set("iterations", r.iterations);
@@ -537,6 +556,35 @@ Json timings_json(const CalibrateSummary& out) {
   return timing;
 }
 
+std::string outcome_of(const CalibrateSummary& s) {
+  return !s.interrupted_in.empty() ? "interrupted" : s.fit.converged ? "converged" : "not_converged";
+}
+
+// calibration.json of a calibration a signal ended before its fit was whole: what it
+// reached (the starts as far as they got), no parameters.
+void write_interrupted_json(const CalibrateConfig& c, const CalibratePlan& p, const CalibrateSummary& s, int patch) {
+  Json j = Json::object();
+  j.set("outcome", outcome_of(s));
+  j.set("interrupted_in", s.interrupted_in);
+  j.set("message", interrupted_message(interrupt_signal()));
+  j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
+  j.set("scene_hash", text_hash(p.scene_text));
+  j.set("patch", patch);
+  j.set("cloth", p.scene.knit ? "knit" : "woven");
+  Json tests = Json::array();
+  for (const TestSpec& t : p.tests) tests.push(test_name(t));
+  j.set("tests", std::move(tests));
+  if (s.fit.interrupted) {
+    j.set("starts", starts_json(s.fit));
+    j.set("fit", fit_json(c, s.fit));
+  }
+  j.set("timings", timings_json(s));
+  j.set("created", utc_now());
+  add_provenance(j);
+  std::filesystem::create_directories(c.out_dir);
+  write_file_atomically(c.out_dir / "calibration.json", j.dump());
+}
+
 // What calibration.json holds beside the validation records.
 struct CalibrationRecord {
   const YarnCurves& yarn;
@@ -549,6 +597,11 @@ void write_calibration_json(const CalibrateConfig& c, const CalibratePlan& p, co
                             Json validation) {
   const FitResult& fit = r.summary.fit;
   Json j = Json::object();
+  j.set("outcome", outcome_of(r.summary));
+  if (!r.summary.interrupted_in.empty()) {
+    j.set("interrupted_in", r.summary.interrupted_in);
+    j.set("message", interrupted_message(interrupt_signal()));
+  }
   j.set("scene", scene_json(c.scene_path, p.scene_text, p.scene, {}));
   j.set("scene_hash", text_hash(p.scene_text));
   j.set("patch", r.patch);
@@ -584,38 +637,59 @@ CalibrateSummary run_calibration(const CalibrateConfig& c, const CalibratePlan& 
   if (c.progress)
     std::fprintf(stderr, "calibrate: %zu tests on a %d x %d %spatch of %s\n", p.tests.size(), patch, patch,
                  p.test_scene.knit ? "(courses x wales) knit " : "", c.scene_path.string().c_str());
-  auto t0 = Clock::now();
-  const YarnCurves yarn = yarn_level_curves(c, p);  // 1. the yarn level
-  out.yarn_tests_s = seconds_since(t0);
+  // On SIGINT or SIGTERM each stage ends at its current equilibrium iteration, Ceres iteration or
+  // time step and calibration.json records the stage with outcome `interrupted`.
+  std::string stage = "the yarn-level tests";
+  try {
+    auto t0 = Clock::now();
+    const YarnCurves yarn = yarn_level_curves(c, p);  // 1. the yarn level
+    out.yarn_tests_s = seconds_since(t0);
 
-  // 2. Continuum tests at the first guess (also the time of one evaluation of every test).
-  const FemMaterial guess = continuum_first_guess(p.scene, p.test_scene, yarn.curves, first_guess_options(c));
-  FemTestPatches patches(p.test_scene);  // kept over the fit's curve evaluations
-  const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
-    return patches.run(m, t, keys);
-  };
-  t0 = Clock::now();
-  std::vector<ResponseCurve> first;
-  for (const FitCurve& fc : yarn.curves) first.push_back(continuum(guess, fc.test, {}));
-  out.fem_tests_s = seconds_since(t0);
+    // 2. Continuum tests at the first guess (also the time of one evaluation of every test).
+    stage = "the continuum tests";
+    const FemMaterial guess = continuum_first_guess(p.scene, p.test_scene, yarn.curves, first_guess_options(c));
+    FemTestPatches patches(p.test_scene);  // kept over the fit's curve evaluations
+    const EquilibriumOptions equilibrium = stoppable();
+    const ContinuumTest continuum = [&](const FemMaterial& m, const TestSpec& t, const std::vector<std::string>& keys) {
+      return patches.run(m, t, keys, equilibrium);
+    };
+    t0 = Clock::now();
+    std::vector<ResponseCurve> first;
+    for (const FitCurve& fc : yarn.curves) first.push_back(continuum(guess, fc.test, {}));
+    out.fem_tests_s = seconds_since(t0);
+    throw_if_interrupted();
 
-  // 3. Fit.
-  t0 = Clock::now();
-  FitOptions fo = c.fit;
-  fo.progress = c.progress;
-  out.fit = fit_continuum(yarn.curves, guess, continuum, fo);
-  out.fit_s = seconds_since(t0);
-  FemMaterial calibrated = out.fit.material;
-  calibrated.areal_density_kg_per_m2 = p.scene.knit ? knit_areal_density(p.test_scene) : matched_areal_density(p.scene);
-  if (c.progress) print_fit(out.fit, yarn.curves, out.fit_s);
-  std::filesystem::create_directories(c.out_dir);
-  write_curves_csv(c.out_dir, yarn.curves, first, out.fit);
+    // 3. Fit.
+    stage = "the fit";
+    t0 = Clock::now();
+    FitOptions fo = c.fit;
+    fo.progress = c.progress;
+    fo.stop_requested = [] { return interrupt_signal() != 0; };
+    out.fit = fit_continuum(yarn.curves, guess, continuum, fo);
+    out.fit_s = seconds_since(t0);
+    if (out.fit.interrupted) throw Interrupted{};
+    FemMaterial calibrated = out.fit.material;
+    calibrated.areal_density_kg_per_m2 =
+        p.scene.knit ? knit_areal_density(p.test_scene) : matched_areal_density(p.scene);
+    if (c.progress) print_fit(out.fit, yarn.curves, out.fit_s);
+    std::filesystem::create_directories(c.out_dir);
+    write_curves_csv(c.out_dir, yarn.curves, first, out.fit);
+    write_params_toml(c, p, yarn.curves, out.fit, calibrated, patch);
 
-  t0 = Clock::now();
-  Json validation = validate_on_motion(c, p, calibrated);  // 4. validation on motion
-  out.validation_s = seconds_since(t0);
-  write_params_toml(c, p, yarn.curves, out.fit, calibrated, patch);
-  write_calibration_json(c, p, {yarn, guess, calibrated, out, patch}, std::move(validation));
+    stage = "the validation";
+    t0 = Clock::now();
+    Json validation = Json::array();
+    try {
+      validate_on_motion(c, p, calibrated, validation);  // 4. validation on motion
+    } catch (const Interrupted&) {
+      out.interrupted_in = stage;  // the fit is whole: the full record with the scenes validated so far
+    }
+    out.validation_s = seconds_since(t0);
+    write_calibration_json(c, p, {yarn, guess, calibrated, out, patch}, std::move(validation));
+  } catch (const Interrupted&) {
+    out.interrupted_in = stage;
+    write_interrupted_json(c, p, out, patch);
+  }
   return out;
 }
 

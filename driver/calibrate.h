@@ -58,6 +58,9 @@ CalibratePlan plan_calibration(const CalibrateConfig& config);
 struct CalibrateSummary {
   FitResult fit;
   double yarn_tests_s = 0, fem_tests_s = 0, fit_s = 0, validation_s = 0;  // wall
+  // Non-empty: SIGINT or SIGTERM (driver/interrupt.h) ended the calibration in this stage ("the
+  // fit", ...); calibration.json says outcome `interrupted`, params.toml exists when the fit was whole.
+  std::string interrupted_in;
 };
 // Runs the plan; a yarn-level test that does not converge far enough to fit
 // is a std::runtime_error naming the test and the rung.

@@ -52,6 +52,7 @@ InterruptScope::InterruptScope() {
 InterruptScope::~InterruptScope() {
   sigaction(SIGINT, &host_int_, nullptr);
   sigaction(SIGTERM, &host_term_, nullptr);
+  clear_interrupt_signal();
 }
 
 }  // namespace wl

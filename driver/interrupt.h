@@ -31,7 +31,8 @@ void throw_if_interrupted();
 // For a run inside a host process that has its own handlers (the Python
 // module): install_interrupt_handlers() for the object's lifetime, with the
 // recorded signal cleared first; the host's SIGINT and SIGTERM handlers come
-// back afterwards. SIGPIPE is left as the host set it.
+// back afterwards and the signal is forgotten (a later call, on any thread,
+// starts unstopped). SIGPIPE is left as the host set it.
 class InterruptScope {
  public:
   InterruptScope();

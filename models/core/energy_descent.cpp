@@ -5,7 +5,8 @@
 
 namespace wl {
 
-DescentResult descend_energy(Model& m, Vec& q, const std::vector<int>& held_dofs, double tol, int max_steps) {
+DescentResult descend_energy(Model& m, Vec& q, const std::vector<int>& held_dofs, double tol, int max_steps,
+                             const std::function<bool()>& stop) {
   const int n = m.num_dofs();
   std::vector<char> held(n, 0);
   for (int d : held_dofs) held[d] = 1;
@@ -29,7 +30,7 @@ DescentResult descend_energy(Model& m, Vec& q, const std::vector<int>& held_dofs
     m.evaluate(0.0, q, v, kForce | kDfdq, eval);
     out.residual_N = 0.0;
     for (int d : free) out.residual_N = std::max(out.residual_N, std::abs(eval.force[d]));
-    if (out.residual_N <= tol) break;
+    if (out.residual_N <= tol || (stop && stop())) break;
     std::vector<Eigen::Triplet<double>> entries;
     double diag = 0.0;
     for (int c = 0; c < eval.dfdq.outerSize(); ++c)

@@ -5,6 +5,7 @@
 // residual line search of calibration/equilibrium.h it walks through
 // indefinite stiffness (a free knit edge) to a minimum.
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "models/core/model.h"
@@ -18,8 +19,9 @@ struct DescentResult {
 };
 
 // Descends from q (in place) until ‖f_f‖∞ ≤ tol or no shift lowers the
-// energy or max_steps; `held` DoFs keep their values in q, as do the model's
-// fixed DoFs. Velocities are zero.
-DescentResult descend_energy(Model& model, Vec& q, const std::vector<int>& held, double tol, int max_steps = 400);
+// energy or max_steps or `stop` (asked before each step) returns true; `held`
+// DoFs keep their values in q, as do the model's fixed DoFs. Velocities are zero.
+DescentResult descend_energy(Model& model, Vec& q, const std::vector<int>& held, double tol, int max_steps = 400,
+                             const std::function<bool()>& stop = {});
 
 }  // namespace wl

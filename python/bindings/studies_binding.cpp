@@ -4,6 +4,7 @@
 
 #include "driver/calibrate.h"
 #include "driver/fit_command.h"
+#include "python/bindings/interruption.h"
 
 namespace py = pybind11;
 
@@ -32,6 +33,7 @@ bool calibrate(const std::string& scene_path, const std::string& out, const std:
   c.time_steps = parse_time_steps("time_steps", time_steps, rtol);
   c.progress = progress;
   const CalibratePlan plan = plan_calibration(c);  // every input checked; nothing written yet
+  const CallInterruption interruption;             // Ctrl-C ends the stage under way; calibration.json says so
   py::gil_scoped_release release;
   return run_calibration(c, plan).fit.converged;
 }
@@ -55,6 +57,7 @@ bool fit(const std::string& scene_path, const std::string& target, const std::ve
   c.fit.window = window;
   c.fit.progress = progress;
   const FitCommandPlan plan = plan_fit(c);  // every input checked; nothing written yet
+  const CallInterruption interruption;      // Ctrl-C ends the fit; fit.json says so
   py::gil_scoped_release release;
   return run_fit(c, plan).converged;
 }

@@ -28,8 +28,8 @@ __all__ = ["Scene", "Model", "Simulation", "Run", "Interrupted", "SceneError", "
 
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C (SIGINT) or SIGTERM during a run: the step under way ended, then the
-    run stopped; `.run` holds what it had (outcome "interrupted"), as the
-    command line keeps its record."""
+    run stopped; `.run` holds what it had (outcome "interrupted"; of calibrate
+    and fit, the dict of their record), as the command line keeps its record."""
 
     def __init__(self, message, run=None):
         super().__init__(message)
@@ -186,6 +186,8 @@ def calibrate(scene, out, *, tests=(), free=(), patch=0, ladders=None, starts=4,
                                  time_steps, rtol, progress)
     result = _read_json(os.path.join(out, "calibration.json"))
     result.update(out=out, converged=converged)
+    if result["outcome"] == "interrupted":
+        raise Interrupted(result["message"], result)
     return result
 
 
@@ -202,4 +204,6 @@ def fit(scene, target, free, out, *, start=None, frames=0, model=None, integrato
                            progress)
     result = _read_json(os.path.join(out, "fit.json"))
     result.update(out=out, converged=converged)
+    if result["outcome"] == "interrupted":
+        raise Interrupted(result["message"], result)
     return result

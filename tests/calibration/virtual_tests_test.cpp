@@ -161,5 +161,27 @@ TEST(VirtualTests, YarnTestsRunAtOnceGiveTheCurvesOfOneAfterAnother) {
   }
 }
 
+// A stop request ends a test at the Newton iteration it is asked before: here
+// the first of the second rung, so the first rung's point stands as without it.
+TEST(VirtualTests, AStopRequestEndsATestAtItsNewtonIteration) {
+  const Scene patch = material_test_scene(hanging_wind(), 7);
+  const TestSpec shear{TestKind::shear, {0.05, 0.1}};
+  const ResponseCurve whole = run_yarn_test(patch, shear);
+  ASSERT_TRUE(whole.complete) << whole.message;
+  ASSERT_EQ(whole.points.size(), 2u);
+  const int first_rung = whole.points[0].newton_iterations;
+  ASSERT_GT(first_rung, 0);
+  int asked = 0;
+  EquilibriumOptions stop_in_second_rung;
+  stop_in_second_rung.stop_requested = [&] { return ++asked > first_rung; };
+  const ResponseCurve stopped = run_yarn_tests(patch, {shear}, 1, {}, nullptr, stop_in_second_rung).front();
+  EXPECT_TRUE(stopped.stopped);
+  EXPECT_FALSE(stopped.complete);
+  EXPECT_EQ(asked, first_rung + 1);
+  ASSERT_EQ(stopped.points.size(), 1u) << stopped.message;
+  EXPECT_EQ(stopped.points[0].response, whole.points[0].response);
+  EXPECT_NE(stopped.message.find("stopped after 0 Newton iterations"), std::string::npos) << stopped.message;
+}
+
 }  // namespace
 }  // namespace wl

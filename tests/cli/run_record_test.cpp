@@ -159,6 +159,55 @@ TEST_F(RunRecord, SigtermDuringAFitLeavesAnInterruptedRecord) {
     EXPECT_EQ(entry.path().string().find(".part"), std::string::npos) << entry.path();
 }
 
+// A signal during calibrate ends the stage under way and leaves calibration.json
+// with outcome `interrupted` (before, the default action killed it with nothing
+// written): in the fit (forty starts) each start at its Ceres iteration, no
+// params.toml; in the validation the time step, with the whole fit's params.toml
+// and curves.csv and validation.csv closed.
+TEST_F(RunRecord, SignalsDuringACalibrationLeaveAnInterruptedRecord) {
+  const struct {
+    int signal, code;
+    std::vector<std::string> options;
+    std::string wait_for, stage;
+    std::vector<std::string> files, absent;
+  } cases[] = {
+      {SIGTERM, 143, {"--starts", "40"}, "fit start 1: iteration 2", "the fit", {}, {"params.toml", "curves.csv"}},
+      {SIGINT,
+       130,
+       {"--starts", "1", "--validate", (dir_ / "long.toml").string()},
+       "validation long: yarn level",
+       "the validation",
+       {"params.toml", "curves.csv", "validation.csv"},
+       {}},
+  };
+  for (const auto& c : cases) {
+    const fs::path out = dir_ / ("calibration" + std::to_string(c.signal));
+    std::vector<std::string> args = {"calibrate", (dir_ / "short.toml").string(), "--tests", "shear", "--out",
+                                     out.string()};
+    args.insert(args.end(), c.options.begin(), c.options.end());
+    const pid_t pid = spawn(args);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (log().find(c.wait_for) == std::string::npos && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ::kill(pid, c.signal);
+    const auto signalled = std::chrono::steady_clock::now();
+    EXPECT_EQ(wait_exit(pid), c.code) << log();
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count(), 2.0) << log();
+    EXPECT_NE(log().find("interrupted by " + std::string(c.signal == SIGINT ? "SIGINT" : "SIGTERM") + " in " + c.stage),
+              std::string::npos)
+        << log();
+    const std::string record = read_text(out / "calibration.json");
+    EXPECT_NE(record.find("\"outcome\": \"interrupted\""), std::string::npos) << record;
+    EXPECT_NE(record.find("\"interrupted_in\": \"" + c.stage + "\""), std::string::npos) << record;
+    for (const std::string& file : c.files) EXPECT_TRUE(fs::exists(out / file)) << c.stage << ": " << file;
+    for (const std::string& file : c.absent) EXPECT_FALSE(fs::exists(out / file)) << c.stage << ": " << file;
+    for (const auto& entry : fs::directory_iterator(out))
+      EXPECT_TRUE(entry.path().string().find(".part") == std::string::npos &&
+                  entry.path().string().find(".tmp-") == std::string::npos)
+          << entry.path();
+  }
+}
+
 TEST_F(RunRecord, BrokenStderrPipeKeepsTheRecord) {
   int fds[2];
   ASSERT_EQ(::pipe(fds), 0);
