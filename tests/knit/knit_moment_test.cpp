@@ -127,7 +127,9 @@ TEST(KnitMoment, TheStockinettesCourseEdgesAreHalfTurnImagesOfEachOther) {
   for (const auto& [name, value] : at_top) {
     EXPECT_NEAR(at_bottom.at(name), -value, 1e-6 * largest) << name;
     // Only the last stitch row's compression frame reaches across an edge cut with a moment.
-    if (name != "stitch_compression") EXPECT_LE(std::abs(value), 1e-6 * largest) << name;
+    if (name != "stitch_compression") {
+      EXPECT_LE(std::abs(value), 1e-6 * largest) << name;
+    }
   }
   std::printf("moment across the course-edge cuts: bottom %.6g N m, top %.6g N m\n", total_bottom, total_top);
 }
