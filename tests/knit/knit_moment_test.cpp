@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "models/knit/knit_model.h"
 #include "models/knit/knit_moment_probe.h"
@@ -85,6 +86,52 @@ TEST(KnitMoment, TheMomentTurnsWithTheCloth) {
   for (const auto& [name, value] : at_rest) largest = std::max(largest, std::abs(value));
   ASSERT_GT(largest, 0.0);
   for (const auto& [name, value] : at_rest) EXPECT_NEAR(after.at(name), value, 1e-9 * largest) << name;
+}
+
+// The generated stockinette path is its own image under a half turn about the
+// course direction (docs/models.md §11.3.2): each loop's crown runs at the front
+// and its sinker at the back, and the half turn swaps them, the face with the
+// back and the cast-on with the bound-off course. So the two course edges are
+// released alike but turned over: every term carries, across a cut between a
+// course edge's contact row and the next, the opposite of the moment it carries
+// across the other edge's cut (cuts and axis placed symmetrically; wales in the
+// middle, away from the yarns' ends). Only the stitch compression's part is not
+// zero there: the frame reactions of the last stitch row. Whichever way one
+// course edge turns, the other turns the opposite way; real stockinette turns
+// both to the front (its crowns and sinkers both lie at the back).
+TEST(KnitMoment, TheStockinettesCourseEdgesAreHalfTurnImagesOfEachOther) {
+  const Scene s = moment_scene("stockinette");
+  const KnitModel m(s);
+  const Vec q = m.initial_q();
+  const int courses = s.knit->courses, wales = s.knit->wales;
+  // Mean y of contact row r (both nodes of every contact), and the cloth's mid-plane.
+  auto row_y = [&](int r) {
+    double sum = 0.0;
+    for (int k = 0; k < 4 * wales; ++k) sum += q[m.graph().node(4 * (r + 1) * wales + k).x_dof + 1];
+    return sum / (4 * wales);
+  };
+  double z_mid = 0.0;
+  for (const KnitNode& n : m.graph().nodes()) z_mid += q[n.x_dof + 2] / m.graph().num_nodes();
+  CourseCut bottom = course_cut(s, 0.0, z_mid), top = bottom;
+  bottom.y = 0.5 * (row_y(-1) + row_y(0));
+  top.y = 0.5 * (row_y(courses - 2) + row_y(courses - 1));
+  const std::map<std::string, double> at_bottom = course_cut_moment(m, q, bottom),
+                                      at_top = course_cut_moment(m, q, top);
+  double largest = 0.0, total_top = 0.0, total_bottom = 0.0;
+  for (const auto& [name, value] : at_top) {
+    largest = std::max(largest, std::abs(value));
+    total_top += value;
+    total_bottom += at_bottom.at(name);
+  }
+  ASSERT_GT(largest, 0.0);
+  for (const auto& [name, value] : at_top) {
+    EXPECT_NEAR(at_bottom.at(name), -value, 1e-6 * largest) << name;
+    // Only the last stitch row's compression frame reaches across an edge cut with a moment.
+    if (name != "stitch_compression") {
+      EXPECT_LE(std::abs(value), 1e-6 * largest) << name;
+    }
+  }
+  std::printf("moment across the course-edge cuts: bottom %.6g N m, top %.6g N m\n", total_bottom, total_top);
 }
 
 }  // namespace
