@@ -92,9 +92,9 @@ std::vector<std::string> stretch_keys(const FemMaterial& guess, bool warp, bool 
   return keys;
 }
 
-class Progress final : public ceres::IterationCallback {
+class StartProgress final : public ceres::IterationCallback {
  public:
-  explicit Progress(int start) : start_(start) {}
+  explicit StartProgress(int start) : start_(start) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& s) override {
     std::fprintf(stderr, "  fit start %d: iteration %d, cost %.6g, |gradient| %.3g\n", start_, s.iteration, s.cost,
                  s.gradient_max_norm);
@@ -239,7 +239,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     so.parameter_tolerance = 1e-10;
     so.num_threads = 1;  // Ceres' threads would sum the curves' costs in a varying order
     so.logging_type = ceres::SILENT;
-    Progress progress(s + 1);
+    StartProgress progress(s + 1);
     if (opt.progress) {
       so.callbacks.push_back(&progress);
       std::fprintf(stderr, "  fit start %d of %d\n", s + 1, num_starts);
