@@ -97,9 +97,9 @@ std::vector<std::string> stretch_keys(const FemMaterial& guess, bool warp, bool 
 
 // The progress line of each iteration (when `print`), the last accepted iterate θ and its cost
 // (Ceres hands back the start when a stop ends the solve), and the end of the solve when `stop` says so.
-class Progress final : public ceres::IterationCallback {
+class StartProgress final : public ceres::IterationCallback {
  public:
-  Progress(int start, bool print, const std::function<bool()>& stop, const std::vector<double>& theta)
+  StartProgress(int start, bool print, const std::function<bool()>& stop, const std::vector<double>& theta)
       : start_(start), print_(print), stop_(stop), theta_(theta) {}
   std::vector<double> accepted;  // empty before the first iteration
   double accepted_cost = 0.0;
@@ -258,7 +258,7 @@ FitResult fit_continuum(const std::vector<FitCurve>& curves, const FemMaterial& 
     so.num_threads = 1;  // Ceres' threads would sum the curves' costs in a varying order
     so.logging_type = ceres::SILENT;
     so.update_state_every_iteration = true;  // θ holds the last iterate when a stop ends the solve
-    Progress progress(s + 1, opt.progress, opt.stop_requested, run.theta);
+    StartProgress progress(s + 1, opt.progress, opt.stop_requested, run.theta);
     so.callbacks.push_back(&progress);
     if (opt.progress) std::fprintf(stderr, "  fit start %d of %d\n", s + 1, num_starts);
     ceres::Solve(so, run.problem.get(), &run.summary);

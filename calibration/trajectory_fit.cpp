@@ -284,10 +284,10 @@ class TrajectoryCost final : public ceres::CostFunction {
 
 // Per iteration: the cost, the accepted point's simulation kept, progress, and
 // the flat-cost rule (fit_stopping.h) over the accepted iterations' costs.
-class Progress final : public ceres::IterationCallback {
+class WindowProgress final : public ceres::IterationCallback {
  public:
-  Progress(const Simulator& sim, SimulationCache* cache, const double* theta, int n, int residuals, bool print,
-           const FlatCostRule& flat, std::vector<double>* history)
+  WindowProgress(const Simulator& sim, SimulationCache* cache, const double* theta, int n, int residuals, bool print,
+                 const FlatCostRule& flat, std::vector<double>* history)
       : sim_(sim),
         cache_(cache),
         theta_(theta),
@@ -381,12 +381,12 @@ ceres::Solver::Options solver_options(const TrajectoryFitOptions& opt) {
   so.parameter_tolerance = 1e-10;
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
-  so.update_state_every_iteration = true;  // for Progress; the iterates are the same either way
+  so.update_state_every_iteration = true;  // for WindowProgress; the iterates are the same either way
   return so;
 }
 
 // Why a stage stopped, in words a user can act on.
-std::string stop_message(const ceres::Solver::Summary& summary, const Progress& progress, int max_iterations,
+std::string stop_message(const ceres::Solver::Summary& summary, const WindowProgress& progress, int max_iterations,
                          int frames) {
   if (summary.termination_type == ceres::USER_SUCCESS) return progress.stop_reason();
   if (summary.termination_type != ceres::NO_CONVERGENCE) return summary.message;
@@ -489,7 +489,7 @@ TrajectoryFitResult fit_frames(const Scene& scene, const std::vector<TargetFrame
   }
   FlatCostRule flat = opt.flat_cost;
   flat.residual_noise = probe.noise;
-  Progress progress(sim, &cache, theta.data(), n, cost->num_residuals(), opt.progress, flat, &stage.cost_history);
+  WindowProgress progress(sim, &cache, theta.data(), n, cost->num_residuals(), opt.progress, flat, &stage.cost_history);
   if (static_cast<int>(probe.frozen.size()) == n) {
     result.message = "no fitted key moves the observed points at the start: nothing to fit over these frames";
   } else {

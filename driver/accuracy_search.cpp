@@ -9,7 +9,7 @@
 namespace wl {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoFit = std::numeric_limits<double>::quiet_NaN();
 
 bool measured(const ToleranceTrial& t) { return std::isfinite(t.error_m) && t.error_m > 0.0 && t.rtol > 0.0; }
 
@@ -55,7 +55,7 @@ PowerLaw fit_power_law(const std::vector<ToleranceTrial>& trials) {
       sy += std::log(t.error_m);
       ++fit.points;
     }
-  if (fit.points == 0) return {kNaN, kNaN, 0};
+  if (fit.points == 0) return {kNoFit, kNoFit, 0};
   const double mx = sx / fit.points, my = sy / fit.points;
   double sxx = 0.0, sxy = 0.0;
   for (const ToleranceTrial& t : trials)
@@ -63,8 +63,8 @@ PowerLaw fit_power_law(const std::vector<ToleranceTrial>& trials) {
       sxx += (std::log(t.rtol) - mx) * (std::log(t.rtol) - mx);
       sxy += (std::log(t.rtol) - mx) * (std::log(t.error_m) - my);
     }
-  fit.slope = sxx > 1e-12 ? sxy / sxx : kNaN;  // two distinct tolerances at least
-  fit.log_c = std::isfinite(fit.slope) ? my - fit.slope * mx : kNaN;
+  fit.slope = sxx > 1e-12 ? sxy / sxx : kNoFit;  // two distinct tolerances at least
+  fit.log_c = std::isfinite(fit.slope) ? my - fit.slope * mx : kNoFit;
   return fit;
 }
 
@@ -81,35 +81,35 @@ const char* to_string(SearchVerdict v) {
 
 double last_trial_bound(const std::vector<ToleranceTrial>& trials, const SearchLimits& limits) {
   const ToleranceTrial& last = trials.back();
-  if (!last.ran) return kNaN;
+  if (!last.ran) return kNoFit;
   for (size_t i = trials.size() - 1; i-- > 0;)
     if (trials[i].ran)
-      return trials[i].rtol >= limits.companion_ratio * last.rtol * (1.0 - 1e-9) ? trials[i].error_m : kNaN;
-  return kNaN;
+      return trials[i].rtol >= limits.companion_ratio * last.rtol * (1.0 - 1e-9) ? trials[i].error_m : kNoFit;
+  return kNoFit;
 }
 
 SearchStep next_tolerance(const std::vector<ToleranceTrial>& trials, double target_m, const SearchLimits& limits) {
   const ToleranceTrial& last = trials.back();
   const double bound = last_trial_bound(trials, limits);
-  if (bound <= target_m) return {SearchVerdict::reached, 0.0, bound, kNaN, ""};
+  if (bound <= target_m) return {SearchVerdict::reached, 0.0, bound, kNoFit, ""};
   const std::string state =
       last.ran
           ? (std::isfinite(bound) ? "the last trial, rtol " + number(last.rtol) + ", within " + number(bound) + " m"
                                   : "the last trial, rtol " + number(last.rtol) + ", not yet measured")
           : "the last trial, rtol " + number(last.rtol) + ", failed";
   if (static_cast<int>(trials.size()) >= limits.max_trials)
-    return {SearchVerdict::budget, 0.0, bound, kNaN,
+    return {SearchVerdict::budget, 0.0, bound, kNoFit,
             "the trial budget of " + std::to_string(limits.max_trials) + " trials is spent (" + state + ")"};
   if (at_min_rtol(last.rtol, limits))
-    return {SearchVerdict::tolerance_floor, 0.0, bound, kNaN,
+    return {SearchVerdict::tolerance_floor, 0.0, bound, kNoFit,
             "the tolerance floor rtol " + number(limits.min_rtol) + " is reached (" + state + ")"};
   if (!last.ran)  // a tighter tolerance takes smaller steps
-    return {SearchVerdict::next_trial, std::max(last.rtol / 10.0, limits.min_rtol), bound, kNaN,
+    return {SearchVerdict::next_trial, std::max(last.rtol / 10.0, limits.min_rtol), bound, kNoFit,
             "the last trial failed: ten times tighter"};
-  if (auto floor = floor_evidence(trials, limits)) return {SearchVerdict::floor, 0.0, bound, kNaN, *floor};
+  if (auto floor = floor_evidence(trials, limits)) return {SearchVerdict::floor, 0.0, bound, kNoFit, *floor};
 
-  SearchStep step{SearchVerdict::next_trial, std::max(last.rtol / limits.companion_ratio, limits.min_rtol), bound, kNaN,
-                  "a trial " + number(limits.companion_ratio) + " times tighter measures the last one's error"};
+  SearchStep step{SearchVerdict::next_trial, std::max(last.rtol / limits.companion_ratio, limits.min_rtol), bound,
+                  kNoFit, "a trial " + number(limits.companion_ratio) + " times tighter measures the last one's error"};
   const PowerLaw fit = fit_power_law(trials);
   if (fit.points == 0) return step;
   step.slope = std::isfinite(fit.slope) ? fit.slope : limits.assumed_slope;

@@ -470,7 +470,7 @@ void write_params_toml(const CalibrateConfig& c, const CalibratePlan& p, const s
 }
 
 // calibration.json "parameters": the fitted keys, then the areal density (not fitted).
-Json parameters_json(const FitResult& fit, const FemMaterial& guess, const FemMaterial& calibrated) {
+Json calibrated_parameters_json(const FitResult& fit, const FemMaterial& guess, const FemMaterial& calibrated) {
   Json params = Json::array();
   for (const FittedParameter& fp : fit.parameters) {
     Json e = Json::object();
@@ -610,7 +610,7 @@ void write_calibration_json(const CalibrateConfig& c, const CalibratePlan& p, co
   j.set("border_strip", c.border_strip);
   j.set("grid_line_bending", c.grid_line_bending);
   j.set("shear_knots_rad", Json(r.calibrated.shear_knots_rad));
-  j.set("parameters", parameters_json(fit, r.guess, r.calibrated));
+  j.set("parameters", calibrated_parameters_json(fit, r.guess, r.calibrated));
   Json corr = Json::array();
   for (const auto& row : fit.correlation) corr.push(Json(row));
   j.set("correlation", std::move(corr));

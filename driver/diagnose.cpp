@@ -73,7 +73,7 @@ class EnergyLedger {
   double kinetic_ = 0, t_ = 0;
 };
 
-const DataArray& point_array(const Frame& f, const std::string& name) {
+const DataArray& frame_point_array(const Frame& f, const std::string& name) {
   for (const DataArray& a : f.point_data)
     if (a.name == name) return a;
   throw std::logic_error("diagnose: frame without point data '" + name + "'");
@@ -149,7 +149,7 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
 
   // Per crossing: its grid position (from the rest material coordinates) and distance per frame.
   const Frame& first = yarn.frames.front();
-  const DataArray &u0 = point_array(first, "u"), &v0 = point_array(first, "v");
+  const DataArray &u0 = frame_point_array(first, "u"), &v0 = frame_point_array(first, "v");
   const double L = c.scene.spacing_m;
   const int crossings = static_cast<int>(first.points.rows());
   std::vector<int> row_of(crossings);
@@ -172,7 +172,7 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
   const size_t frames = std::min(yarn.frames.size(), fem.frames.size());
   for (size_t k = 0; k < frames; ++k) {
     Frame f = yarn.frames[k];
-    const DataArray &u = point_array(f, "u"), &v = point_array(f, "v");
+    const DataArray &u = frame_point_array(f, "u"), &v = frame_point_array(f, "v");
     const Vec q = Eigen::Map<const Vec>(fem.frames[k].points.data(), fem.frames[k].points.size());
     DataArray d{"distance_to_continuum_m", 1, {}};
     double sum = 0, max = 0, b = 0, in = 0;

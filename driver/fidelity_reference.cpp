@@ -14,7 +14,7 @@
 namespace wl {
 namespace {
 
-constexpr char kMagic[8] = {'W', 'L', 'F', 'I', 'D', '0', '2', '\0'};
+constexpr char kFidelityMagic[8] = {'W', 'L', 'F', 'I', 'D', '0', '2', '\0'};
 constexpr char kOldMagic[8] = {'W', 'L', 'F', 'I', 'D', '0', '1', '\0'};  // without the frame times
 constexpr const char* kFile = "reference.bin";
 
@@ -54,7 +54,7 @@ std::string fidelity_reference_key(const FidelityConfig& c) {
 
 void write_fidelity_reference(const std::filesystem::path& dir, const std::string& key, const FidelityReference& ref) {
   const ReferenceFrames& f = ref.frames;
-  std::string out(kMagic, sizeof kMagic);
+  std::string out(kFidelityMagic, sizeof kFidelityMagic);
   put_string(out, key);
   put_row(out, ref.row);
   put<std::uint64_t>(out, f.x.size());
@@ -79,7 +79,7 @@ FidelityReference read_fidelity_reference(const std::filesystem::path& dir, cons
   char magic[8];
   if (in.read(magic, 8) && std::memcmp(magic, kOldMagic, 8) == 0)
     throw fail("written by an older weavelab (without frame times): write it again with --reference-only");
-  if (!in || std::memcmp(magic, kMagic, 8) != 0) throw fail("not a fidelity reference file");
+  if (!in || std::memcmp(magic, kFidelityMagic, 8) != 0) throw fail("not a fidelity reference file");
   std::string stored;
   if (!get_string(in, stored)) throw fail("truncated");
   if (stored != key) throw fail("written for another scene, overrides, reference or time steps than this command's");

@@ -26,7 +26,7 @@ std::string reference_key(const std::string& scene_text, const std::string& mode
 
 namespace {
 
-constexpr char kMagic[8] = {'W', 'L', 'R', 'E', 'F', '0', '1', '\0'};
+constexpr char kReferenceMagic[8] = {'W', 'L', 'R', 'E', 'F', '0', '1', '\0'};
 
 std::string format_g(double x) {
   char buf[32];
@@ -44,7 +44,7 @@ Eigen::Index frame_points(const Scene& scene, const std::string& model_name) {
 
 void write_reference_file(const std::filesystem::path& path, const std::string& key, const Reference& ref) {
   std::string out;
-  out.append(kMagic, sizeof kMagic);
+  out.append(kReferenceMagic, sizeof kReferenceMagic);
   put<std::uint64_t>(out, key.size());
   out += key;
   put(out, ref.rtol);
@@ -63,7 +63,7 @@ bool read_reference_file(const std::filesystem::path& path, const std::string& k
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   char magic[8];
-  if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0) return false;
+  if (!in.read(magic, 8) || std::memcmp(magic, kReferenceMagic, 8) != 0) return false;
   std::uint64_t key_len = 0, times = 0, rows = 0;
   if (!get(in, key_len) || key_len != key.size()) return false;
   std::string stored(key_len, '\0');

@@ -33,7 +33,7 @@ std::string failure_mode(const StabilityProbe& p) {
   return to_string(p.result.outcome);
 }
 
-void check_config(const StabilityConfig& cfg) {
+void check_stability_config(const StabilityConfig& cfg) {
   for (const auto& m : cfg.models) check_model_for_scene(cfg.scene, m);  // unknown, or not the scene's cloth
   for (const auto& i : cfg.integrators) (void)make_integrator(i);
   for (double m : cfg.multipliers)
@@ -156,7 +156,7 @@ std::vector<std::string> default_stability_integrators() {
 StabilityResult run_stability(const StabilityConfig& cfg_in) {
   StabilityConfig cfg = cfg_in;
   if (cfg.integrators.empty()) cfg.integrators = default_stability_integrators();
-  check_config(cfg);
+  check_stability_config(cfg);
   const auto t0 = std::chrono::steady_clock::now();
   const std::string started = utc_now();
   std::filesystem::create_directories(cfg.out_dir);

@@ -12,7 +12,7 @@
 namespace wl {
 namespace {
 
-void check_config(const Scene& scene, const TilesConfig& config) {
+void check_tiles_config(const Scene& scene, const TilesConfig& config) {
   if (scene.knit)
     throw std::invalid_argument("tiles: the scene is knitted; the periodic tile sampler is for woven cloth");
   if (config.samples < 2)
@@ -127,7 +127,7 @@ std::string tile_law_csv(const TileLaw& law, const TileRanges& ranges) {
 std::string tile_cache_name(const std::string& key) { return "tile_samples_" + text_hash(key) + ".csv"; }
 
 TilesResult run_tiles(const Scene& scene, const TilesConfig& config) {
-  check_config(scene, config);
+  check_tiles_config(scene, config);
   std::filesystem::create_directories(config.out_dir);
   TilesResult r;
   const std::vector<TileSample> samples = sample_tiles(scene, config, r);

@@ -41,7 +41,7 @@ const std::vector<std::string> kWorkPrecisionColumns = {"model",
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNotApplicable = std::numeric_limits<double>::quiet_NaN();
 
 void validate_names(const WorkPrecisionConfig& c) {
   for (const auto& m : c.models) check_model_for_scene(c.scene, m);  // unknown, or not the scene's cloth
@@ -163,14 +163,14 @@ WorkPrecisionRow run_rung(const WorkPrecisionConfig& cfg, const std::string& mod
     opt.rtol = row.rtol = rung;
     opt.atol = row.atol = rung * cfg.atol_per_rtol;
     opt.dt = cfg.adaptive_initial_dt;
-    row.dt = kNaN;
+    row.dt = kNotApplicable;
   } else {
     opt.adaptive = false;
     opt.dt = row.dt = rung;
-    row.rtol = row.atol = kNaN;
+    row.rtol = row.atol = kNotApplicable;
   }
   run_with_pilots(cfg, model, integ, opt, step_cap, row);
-  row.error = {kNaN, kNaN};
+  row.error = {kNotApplicable, kNotApplicable};
   if (row.run.result.outcome == Outcome::ok) row.error = trajectory_error(row.run.trajectory, ref.trajectory);
   if (cfg.progress)
     std::fprintf(stderr, "  %-4s %-12s %s %-8s %-14s err rms %.3g m, max %.3g m, %.2f s CPU, %ld steps\n",
@@ -184,7 +184,7 @@ WorkPrecisionRow run_rung(const WorkPrecisionConfig& cfg, const std::string& mod
 void run_ladder(const WorkPrecisionConfig& cfg, const std::string& model, const std::string& integ, bool adaptive,
                 const Reference& ref, CsvTable& csv, WorkPrecisionResult& res) {
   const std::vector<double> rungs = rungs_of(cfg, adaptive);
-  double prev_cpu = kNaN, last_cpu = kNaN;
+  double prev_cpu = kNotApplicable, last_cpu = kNotApplicable;
   long step_cap = cfg.pilot_steps;
   for (size_t k = 0; k < rungs.size(); ++k) {
     if (std::isfinite(last_cpu)) {

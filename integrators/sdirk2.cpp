@@ -9,7 +9,7 @@
 namespace wl {
 namespace {
 
-void zero_fixed(Vec& x, const std::vector<int>& fixed) {
+void zero_at_fixed(Vec& x, const std::vector<int>& fixed) {
   for (int i : fixed) x[i] = 0.0;
 }
 
@@ -80,7 +80,7 @@ StepResult Sdirk2::solve_stage(double t, double h, const Vec& q_base, const Vec&
     model_->evaluate(t, Q, V, flags, res_);
     ++stats_.rhs_evals;
     G = (varying_mass ? res_.mass : jac_.mass) * (V - w) - gh * res_.force;
-    zero_fixed(G, fixed_);
+    zero_at_fixed(G, fixed_);
     if (!G.allFinite()) return {Outcome::nan, "NaN in the stage residual", FailureCause::newton};
     if (!solver_->solve(-G, dV))
       return {Outcome::diverged, "stage matrix: " + solver_->failure(), FailureCause::newton};
@@ -141,7 +141,7 @@ Sdirk2::Attempt Sdirk2::attempt(double h) {
   reuse_matrix_ = true;  // each stage below withdraws it if it converged slowly
   // Stage 1, started from the last step's end acceleration.
   V1_ = v_ + gh * a_last_;
-  zero_fixed(V1_, fixed_);
+  zero_at_fixed(V1_, fixed_);
   a.result = solve_stage(t_ + gh, h, q_, v_, V1_, a.iters);
   if (a.result.outcome != Outcome::ok) return failed(a);
   Q1_ = q_ + gh * V1_;
@@ -159,14 +159,14 @@ Sdirk2::Attempt Sdirk2::attempt(double h) {
   const Vec eq = gh * (V2_ - V1_);
   const Vec ev = (V2_ - w2_) - (V1_ - v_);
   Vec rhs = jac_.mass * ev + gh * (jac_.dfdq * eq), xv;
-  zero_fixed(rhs, fixed_);
+  zero_at_fixed(rhs, fixed_);
   if (!solver_->solve(rhs, xv)) {
     a.result = {Outcome::diverged, "error filter: " + solver_->failure(), FailureCause::newton};
     return a;
   }
   ++stats_.linear_solves;
   Vec xq = eq + gh * xv;
-  zero_fixed(xq, fixed_);
+  zero_at_fixed(xq, fixed_);
   a.error = weighted_rms(xq);
   if (!std::isfinite(a.error)) a.result = {Outcome::nan, "NaN in the error estimate", FailureCause::newton};
   return a;

@@ -7,14 +7,15 @@
 namespace wl {
 namespace {
 
-const std::filesystem::path& checked(const std::vector<std::string>& columns, const std::filesystem::path& path) {
+const std::filesystem::path& with_valid_table_columns(const std::vector<std::string>& columns,
+                                                      const std::filesystem::path& path) {
   if (columns.empty()) throw std::invalid_argument("CsvTable '" + path.string() + "': no columns given");
   for (const std::string& c : columns)
     if (c.empty()) throw std::invalid_argument("CsvTable '" + path.string() + "': empty column name");
   return path;
 }
 
-std::string line_of(const std::vector<std::string>& cells) {
+std::string csv_line(const std::vector<std::string>& cells) {
   std::string line;
   for (size_t k = 0; k < cells.size(); ++k) {
     if (k) line += ',';
@@ -44,8 +45,8 @@ std::string csv_number(double x) {
 }
 
 CsvTable::CsvTable(std::filesystem::path path, std::vector<std::string> columns)
-    : file_(checked(columns, path)), columns_(std::move(columns)) {
-  file_.write(line_of(columns_));
+    : file_(with_valid_table_columns(columns, path)), columns_(std::move(columns)) {
+  file_.write(csv_line(columns_));
   file_.flush();
 }
 
@@ -53,7 +54,7 @@ void CsvTable::row(const std::vector<std::string>& cells) {
   if (cells.size() != columns_.size())
     throw std::invalid_argument("CsvTable '" + file_.path().string() + "': row has " + std::to_string(cells.size()) +
                                 " cells, expected " + std::to_string(columns_.size()));
-  file_.write(line_of(cells));
+  file_.write(csv_line(cells));
   file_.flush();
   ++rows_;
 }

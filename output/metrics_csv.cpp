@@ -7,7 +7,8 @@ namespace wl {
 namespace {
 
 // Returns `path` once the column names are valid (used before the file is created).
-const std::filesystem::path& checked(const std::vector<std::string>& columns, const std::filesystem::path& path) {
+const std::filesystem::path& with_valid_metrics_columns(const std::vector<std::string>& columns,
+                                                        const std::filesystem::path& path) {
   if (columns.empty()) throw std::invalid_argument("MetricsCsv '" + path.string() + "': no columns given");
   for (const std::string& c : columns)
     if (c.empty() || c.find_first_of(",\"\r\n") != std::string::npos)
@@ -19,7 +20,7 @@ const std::filesystem::path& checked(const std::vector<std::string>& columns, co
 }  // namespace
 
 MetricsCsv::MetricsCsv(std::filesystem::path path, std::vector<std::string> columns)
-    : file_(checked(columns, path)), columns_(std::move(columns)) {
+    : file_(with_valid_metrics_columns(columns, path)), columns_(std::move(columns)) {
   std::string header;
   for (size_t k = 0; k < columns_.size(); ++k) {
     if (k) header += ',';

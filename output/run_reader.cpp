@@ -37,7 +37,7 @@ std::string attribute(const std::string& text, size_t begin, size_t end, const s
   return to == std::string::npos || to > end ? std::string{} : text.substr(from, to - from);
 }
 
-int line_of(const std::string& text, size_t pos) {
+int line_number_at(const std::string& text, size_t pos) {
   return 1 + static_cast<int>(std::count(text.begin(), text.begin() + std::min(pos, text.size()), '\n'));
 }
 
@@ -53,7 +53,7 @@ struct FrameSource {
   size_t index = 0;  // in run.pvd, from 0
   double time = 0.0;
   std::string at(const std::string& text, size_t pos) const {
-    return file.string() + ":" + std::to_string(line_of(text, pos)) + ": frame " + std::to_string(index) +
+    return file.string() + ":" + std::to_string(line_number_at(text, pos)) + ": frame " + std::to_string(index) +
            " (t = " + format_g(time) + " s)";
   }
 };
@@ -142,7 +142,7 @@ std::vector<RecordedFrame> read_run_frames(const std::filesystem::path& run_dir)
   const std::string text = read_text(pvd);
   std::vector<RecordedFrame> frames;
   for (size_t at = text.find("<DataSet "); at != std::string::npos; at = text.find("<DataSet ", at + 1)) {
-    const auto where = [&] { return pvd.string() + ":" + std::to_string(line_of(text, at)); };
+    const auto where = [&] { return pvd.string() + ":" + std::to_string(line_number_at(text, at)); };
     const size_t end = text.find('>', at);
     const std::string t = attribute(text, at, end, "timestep"), file = attribute(text, at, end, "file");
     char* stop = nullptr;

@@ -5,7 +5,7 @@
 # triggered it being the last one its log names. Arguments go to ctest, e.g. `tests/sanitize.sh -R IntegratorSuite`
 # for a subset through ctest (default: the whole gtest suite less the long
 # simulations listed in tests/sanitize_skip.txt, which the Release suite runs).
-# Slow (docs/design.md §10).
+# The libraries compile as unity builds (CMakeLists.txt). Slow (docs/design.md §10).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Under AddressSanitizer Eigen switches to its own aligned allocator, while the
@@ -17,7 +17,7 @@ cd "$(dirname "$0")/.."
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer -DEIGEN_MALLOC_ALREADY_ALIGNED=1"
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g1 -O1" \
       -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DWEAVELAB_TEST_TIMEOUT=3000 \
-      -DWEAVELAB_WITH_HYPRE=OFF \
+      -DWEAVELAB_WITH_HYPRE=OFF -DCMAKE_UNITY_BUILD=ON \
       ${WEAVELAB_CMAKE_ARGS:-} >/dev/null
 cmake --build build-sanitize -j"$(nproc)" --target weavelab_tests
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1"
@@ -26,13 +26,13 @@ cd build-sanitize
 if [ $# -gt 0 ]; then
   exec ctest --output-on-failure -j"$(nproc)" "$@"
 fi
-# The whole suite: the gtest program itself, split into two shards per core
+# The whole suite: the gtest program itself, split into four shards per core
 # (GTEST_TOTAL_SHARDS), rather than ctest's one process per test, whose start-up
 # under the sanitizers costs more than most tests; more shards than cores even
 # out the shards' unequal lengths. A shard's log is printed in full when it
 # fails. The ctest tests of tests/fuzz/ run beside the shards.
 skip=$(grep -v '^#' ../tests/sanitize_skip.txt | grep -v '^$' | paste -sd':')
-shards=$((2 * $(nproc)))
+shards=$((4 * $(nproc)))
 pids=()
 for ((k = 0; k < shards; ++k)); do
   GTEST_TOTAL_SHARDS=$shards GTEST_SHARD_INDEX=$k \

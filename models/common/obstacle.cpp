@@ -10,7 +10,7 @@
 namespace wl {
 namespace {
 
-Vec3 vec(const std::array<double, 3>& a) { return Vec3(a[0], a[1], a[2]); }
+Vec3 vec3_of(const std::array<double, 3>& a) { return Vec3(a[0], a[1], a[2]); }
 double sign(double x) { return x < 0.0 ? -1.0 : 1.0; }
 
 // R = R_z R_y R_x: turns about the fixed x, then y, then z axis.
@@ -25,12 +25,12 @@ Mat3 rotation(const std::array<double, 3>& deg) {
 
 Obstacle::Obstacle(const ObstacleSpec& spec)
     : spec_(spec),
-      c0_(vec(spec.center_m)),
-      velocity_(vec(spec.velocity_m_per_s)),
+      c0_(vec3_of(spec.center_m)),
+      velocity_(vec3_of(spec.velocity_m_per_s)),
       rotation_(rotation(spec.rotation_deg)),
       mu_(spec.friction_coefficient) {
   switch (spec.shape) {
-    case ObstacleSpec::Shape::box: half_ = vec(spec.half_extents_m); break;
+    case ObstacleSpec::Shape::box: half_ = vec3_of(spec.half_extents_m); break;
     case ObstacleSpec::Shape::cylinder:
     case ObstacleSpec::Shape::disk: half_ = Vec3(spec.radius_m, spec.radius_m, 0.5 * spec.height_m); break;
     case ObstacleSpec::Shape::mesh:

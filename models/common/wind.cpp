@@ -7,15 +7,7 @@
 #include <Eigen/Geometry>
 
 namespace wl {
-namespace {
-
-Mat3 cross_matrix(const Vec3& a) {
-  Mat3 m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 WindTerm::WindTerm(const Vec3& wind_velocity, double air_density, double drag)
     : wind_(wind_velocity), rho_(air_density), drag_(drag) {

@@ -9,6 +9,13 @@ using Vec = Eigen::VectorXd;
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
+
+// The matrix [a]x with [a]x b = a x b.
+inline Mat3 cross_matrix(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 // A stencil entry that is not a degree of freedom (a border node's frozen u, or

@@ -21,7 +21,7 @@ std::string printable(const std::string& text) {
   return s + (text.size() > 60 ? "…" : "");
 }
 
-Vec3 vec(const std::array<double, 3>& a) { return Vec3(a[0], a[1], a[2]); }
+Vec3 mesh_vertex(const std::array<double, 3>& a) { return Vec3(a[0], a[1], a[2]); }
 
 // A vertex reference "i", "i/t", "i//n" or "i/t/n" → 0-based index, or −1.
 int vertex_index(const std::string& token, int vertices_so_far) {
@@ -103,7 +103,7 @@ ObstacleMesh read_obj_mesh(const std::string& path, double scale) {
       if (v >= nv)
         throw SceneError(path, m.face_lines[f], "f", "vertex " + std::to_string(v + 1),
                          "a vertex index from 1 to " + std::to_string(nv) + " (the file's vertex count)");
-    const Vec3 a = vec(m.vertices[t[0]]), b = vec(m.vertices[t[1]]), c = vec(m.vertices[t[2]]);
+    const Vec3 a = mesh_vertex(m.vertices[t[0]]), b = mesh_vertex(m.vertices[t[1]]), c = mesh_vertex(m.vertices[t[2]]);
     const double longest = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
     const double area2 = (b - a).cross(c - a).norm();
     if (!(area2 > 1e-12 * longest))
@@ -154,7 +154,7 @@ void orient_closed_mesh(ObstacleMesh& m) {
     }
   double volume6 = 0.0;  // Σ a·(b × c) = 6 × the enclosed volume
   for (const auto& t : m.faces)
-    volume6 += vec(m.vertices[t[0]]).dot(vec(m.vertices[t[1]]).cross(vec(m.vertices[t[2]])));
+    volume6 += mesh_vertex(m.vertices[t[0]]).dot(mesh_vertex(m.vertices[t[1]]).cross(mesh_vertex(m.vertices[t[2]])));
   if (volume6 < 0.0)
     for (auto& t : m.faces) std::swap(t[1], t[2]);
 }

@@ -10,12 +10,6 @@ namespace {
 using J312 = Eigen::Matrix<double, 3, 12>;
 using R12 = Eigen::Matrix<double, 1, 12>;
 
-Mat3 cross_matrix(const Vec3& a) {
-  Mat3 m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
-
 }  // namespace
 
 void HingeBendingTerm::add(const std::array<int, 12>& stencil, const Vec2& edge_uv, double area_sum, double theta0) {
