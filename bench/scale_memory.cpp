@@ -31,24 +31,39 @@ double resident_mb() {
 }
 
 // Bytes of the assembly's scatter plans as the terms' stencils fix them
-// (models/core/assembly.h, TermPlan): per element n² value slots, its place in
-// the colour order, and the term's own stencil of n DoF indices (4 bytes each).
-// Zero for a model that is not a TermModel.
+// (models/core/assembly.h, TermPlan): per element a column start per stencil
+// DoF (4 bytes), a row place per block entry (2 bytes), its place in the
+// colour order (4 bytes), and the term's own stencil of n DoF indices (4
+// bytes each). Zero for a model that is not a TermModel.
 double scatter_plan_bytes(const Model& model) {
   const auto* terms = dynamic_cast<const TermModel*>(&model);
   if (!terms) return 0.0;
   double bytes = 0.0;
   for (const auto& t : terms->terms()) {
     const double n = t->stencil_size();
-    bytes += 4.0 * (n * n + 1.0 + n) * t->num_elements();
+    bytes += (4.0 * n + 2.0 * n * n + 4.0 + 4.0 * n) * t->num_elements();
   }
   return bytes;
+}
+
+// Bytes of the model's sparsity pattern (8-byte values, 32-bit row indices
+// and column starts); the step matrix A is one more of its size.
+double pattern_bytes(const Model& model) {
+  const SparseMatrix& p = model.pattern();
+  return 12.0 * static_cast<double>(p.nonZeros()) + 4.0 * (p.outerSize() + 1.0);
 }
 
 struct Arguments {
   std::string scene, model = "yarn", solver = "auto";
   int steps = 5, warmup = 2;
 };
+
+// What `weavelab run` would estimate for the scene run with this solver
+// (driver/memory_estimate.h), to set beside the peaks measured.
+double run_estimate_bytes(Scene scene, const Arguments& a) {
+  scene.linear_solver = a.solver;
+  return estimate_run_memory(scene, a.model).bytes;
+}
 
 // Fills `a`; returns an error message for bad arguments (empty when fine).
 std::string parse(int argc, char** argv, Arguments& a) {
@@ -94,14 +109,15 @@ void measure_scale(const Scene& scene, const Arguments& a, LinearSolverMethod me
       "scene,model,requested,solver,dofs,nnz,steps,step_ms,step_cpu_ms,krylov_per_step,factorizations_per_step,"
       "rss_start_mb,peak_model_mb,rss_model_mb,rss_initialized_mb,rss_end_mb,peak_mb,solver_matrices_mb,preconditioner_"
       "mb,"
-      "krylov_mb,scatter_plans_mb\n");
-  std::printf("%s,%s,%s,\"%s\",%d,%ld,%d,%.3f,%.3f,%.2f,%.2f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n",
-              a.scene.c_str(), a.model.c_str(), a.solver.c_str(), be.solver().description().c_str(), model->num_dofs(),
-              static_cast<long>(model->pattern().nonZeros()), a.steps, step.wall_ms(), step.cpu_ms(),
-              double(after.krylov_iterations - before.krylov_iterations) / a.steps,
-              double(after.factorizations - before.factorizations) / a.steps, rss_start, peak_model, rss_model,
-              rss_initialized, resident_mb(), peak_resident_bytes() / 1e6, mem.matrices / 1e6, mem.preconditioner / 1e6,
-              mem.krylov / 1e6, scatter_plan_bytes(*model) / 1e6);
+      "krylov_mb,scatter_plans_mb,pattern_mb,estimate_mb\n");
+  std::printf(
+      "%s,%s,%s,\"%s\",%d,%ld,%d,%.3f,%.3f,%.2f,%.2f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f\n",
+      a.scene.c_str(), a.model.c_str(), a.solver.c_str(), be.solver().description().c_str(), model->num_dofs(),
+      static_cast<long>(model->pattern().nonZeros()), a.steps, step.wall_ms(), step.cpu_ms(),
+      double(after.krylov_iterations - before.krylov_iterations) / a.steps,
+      double(after.factorizations - before.factorizations) / a.steps, rss_start, peak_model, rss_model, rss_initialized,
+      resident_mb(), peak_resident_bytes() / 1e6, mem.matrices / 1e6, mem.preconditioner / 1e6, mem.krylov / 1e6,
+      scatter_plan_bytes(*model) / 1e6, pattern_bytes(*model) / 1e6, run_estimate_bytes(scene, a) / 1e6);
 }
 
 }  // namespace

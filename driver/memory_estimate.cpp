@@ -1,5 +1,8 @@
 #include "driver/memory_estimate.h"
 
+#include "integrators/amg_preconditioner.h"
+#include "integrators/sparse_solver.h"
+
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -11,13 +14,19 @@
 namespace wl {
 namespace {
 
-// Peak ≈ kProcess + DoFs · (kBase + kPerLog2 · log₂ DoFs): the factor's fill
-// grows like n log n. An upper fit to the peak resident sizes of `weavelab run`
-// on the hanging cloth at 257×257 (328 197 DoFs): 11.8 kB per DoF with gmres
-// (the default), 15.7 kB with umfpack; the estimate gives 16.8 kB.
+// The factor routes (gmres's LLᵀ, cholmod, umfpack): peak ≈ kProcess + DoFs ·
+// (kBase + kPerLog2 · log₂ DoFs), the factor's fill growing like n log n; an
+// upper fit to the peaks of `weavelab run` on the hanging cloth up to 257×257
+// with those solvers, measured before the cuts of docs/design.md §11.1 (their
+// peaks have only come down since).
 constexpr double kProcess = 64e6;
 constexpr double kBase = 4000.0;
 constexpr double kPerLog2 = 700.0;
+// The AMG route of the woven cloth: peak ≈ kProcess + DoFs · kAmgPerDof, the
+// hierarchy growing with the entries of A as the matrix does; 20 % above the
+// largest peak per DoF of the woven cloth's amg rows in the scale study
+// (experiments/scale/RESULTS.md, whole runs and steps).
+constexpr double kAmgPerDof = 6100.0;
 
 // A knit's DoFs (docs/models.md §11.1): 4 contact nodes per loop and contact
 // row (two sides, two ends) on courses + 1 contact rows, 3 coordinates each;
@@ -30,6 +39,14 @@ long knit_dofs(const KnitPattern& k, bool sliding) {
 }
 
 }  // namespace
+
+bool takes_amg_route(const Scene& scene, const std::string& model_name, long dofs) {
+  if (model_name != "yarn" || scene.knit) return false;  // measured on the woven cloth only
+  if (scene.linear_solver == "amg") return true;
+  // auto takes amg from kAmgMinFree free DoFs on (nearly symmetric A); at twice
+  // as many DoFs no set of handles pins enough to keep it below.
+  return scene.linear_solver == "auto" && amg_available() && dofs >= 2L * kAmgMinFree;
+}
 
 MemoryEstimate estimate_run_memory(const Scene& scene, const std::string& model_name) {
   // A knit's continuum lies on its contact grid: 2·wales columns, courses + 1 rows (docs/models.md §11.9).
@@ -46,7 +63,7 @@ MemoryEstimate estimate_run_memory(const Scene& scene, const std::string& model_
     e.dofs = 3 * w * h + (scene.sliding ? 2 * std::max(0L, w - 2) * std::max(0L, h - 2) : 0);
   }
   const double n = static_cast<double>(std::max(1L, e.dofs));
-  e.bytes = kProcess + n * (kBase + kPerLog2 * std::log2(n));
+  e.bytes = kProcess + n * (takes_amg_route(scene, model_name, e.dofs) ? kAmgPerDof : kBase + kPerLog2 * std::log2(n));
   return e;
 }
 

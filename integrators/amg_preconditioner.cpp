@@ -134,24 +134,42 @@ AmgPreconditioner::~AmgPreconditioner() {
   impl_->destroy_vectors();
 }
 
-bool AmgPreconditioner::setup(const Matrix64& s, std::string& failure) {
+bool AmgPreconditioner::setup(const Matrix64& a, std::span<const int> transpose, std::string& failure) {
   std::lock_guard<std::mutex> one_at_a_time(hypre_mutex());
-  const int n = static_cast<int>(s.rows());
+  const int n = static_cast<int>(a.rows());
   if (impl_->n != n) impl_->make_vectors(n);
   impl_->destroy_matrix();
   HYPRE_IJMatrixCreate(MPI_COMM_SELF, 0, n - 1, 0, n - 1, &impl_->ij);
   HYPRE_IJMatrixSetObjectType(impl_->ij, HYPRE_PARCSR);
-  // S is symmetric: its column j, stored contiguously, is its row j.
-  std::vector<HYPRE_Int> row_sizes(n), rows(n), cols(static_cast<size_t>(s.nonZeros()));
+  // S is symmetric: its column j, stored contiguously, is its row j. It is
+  // handed to hypre a block of rows at a time, so only hypre holds all of it.
+  const std::int64_t* outer = a.outerIndexPtr();
+  const std::int64_t* inner = a.innerIndexPtr();
+  const double* av = a.valuePtr();
+  std::vector<HYPRE_Int> row_sizes(n), rows(n);
   for (int j = 0; j < n; ++j) {
     rows[j] = j;
-    row_sizes[j] = static_cast<HYPRE_Int>(s.outerIndexPtr()[j + 1] - s.outerIndexPtr()[j]);
+    row_sizes[j] = static_cast<HYPRE_Int>(outer[j + 1] - outer[j]);
   }
-  for (std::int64_t k = 0; k < s.nonZeros(); ++k)
-    cols[static_cast<size_t>(k)] = static_cast<HYPRE_Int>(s.innerIndexPtr()[k]);
   HYPRE_IJMatrixSetRowSizes(impl_->ij, row_sizes.data());
   HYPRE_IJMatrixInitialize(impl_->ij);
-  HYPRE_IJMatrixSetValues(impl_->ij, n, row_sizes.data(), rows.data(), cols.data(), s.valuePtr());
+  constexpr std::int64_t kBlockEntries = 1 << 20;
+  std::vector<HYPRE_Int> cols;
+  std::vector<double> values;
+  for (int j0 = 0; j0 < n;) {
+    int j1 = j0 + 1;
+    while (j1 < n && outer[j1 + 1] - outer[j0] <= kBlockEntries) ++j1;
+    const std::int64_t begin = outer[j0], count = outer[j1] - begin;
+    cols.resize(static_cast<size_t>(count));
+    values.resize(static_cast<size_t>(count));
+    for (std::int64_t k = begin; k < begin + count; ++k) {
+      const int t = transpose[static_cast<size_t>(k)];
+      cols[static_cast<size_t>(k - begin)] = static_cast<HYPRE_Int>(inner[k]);
+      values[static_cast<size_t>(k - begin)] = 0.5 * (av[k] + (t >= 0 ? av[t] : 0.0));
+    }
+    HYPRE_IJMatrixSetValues(impl_->ij, j1 - j0, row_sizes.data() + j0, rows.data() + j0, cols.data(), values.data());
+    j0 = j1;
+  }
   HYPRE_IJMatrixAssemble(impl_->ij);
   void* object = nullptr;
   HYPRE_IJMatrixGetObject(impl_->ij, &object);
@@ -215,7 +233,7 @@ AmgPreconditioner::AmgPreconditioner(std::vector<int> kinds) : kinds_(std::move(
   throw std::runtime_error("linear solver 'amg' needs hypre: weavelab was built without it (Debian libhypre-dev)");
 }
 AmgPreconditioner::~AmgPreconditioner() = default;
-bool AmgPreconditioner::setup(const Matrix64&, std::string& failure) {
+bool AmgPreconditioner::setup(const Matrix64&, std::span<const int>, std::string& failure) {
   failure = "built without hypre";
   return false;
 }

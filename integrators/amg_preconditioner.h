@@ -3,8 +3,8 @@
 // docs/design.md §6.3). hypre is optional at build time: without it
 // amg_available() is false and AmgPreconditioner's constructor throws.
 //
-// The hierarchy is built from a symmetric matrix S (the solver passes
-// S = (A + Aᵀ)/2). Unknown-based systems AMG: each row carries a kind, and
+// The hierarchy is built from S = (A + Aᵀ)/2, formed straight into hypre's
+// storage (no copy of S kept). Unknown-based systems AMG: each row carries a kind, and
 // BoomerAMG measures strength, coarsens and interpolates within a kind only
 // (HYPRE_BoomerAMGSetNumFunctions / SetDofFunc), so the x, y and z components
 // of the nodes and the sliding coordinates, weakly coupled to the positions
@@ -18,6 +18,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,9 +52,10 @@ class AmgPreconditioner {
   AmgPreconditioner(const AmgPreconditioner&) = delete;
   AmgPreconditioner& operator=(const AmgPreconditioner&) = delete;
 
-  // Builds the hierarchy of the symmetric matrix s (full pattern, both
-  // triangles). Returns false with `failure` set when hypre reports an error.
-  bool setup(const Matrix64& s, std::string& failure);
+  // Builds the hierarchy of S = (A + Aᵀ)/2 on a's pattern: entry k of S is
+  // (a_k + a_transpose[k])/2 (a_k/2 where transpose[k] is −1, no transposed
+  // entry). Returns false with `failure` set when hypre reports an error.
+  bool setup(const Matrix64& a, std::span<const int> transpose, std::string& failure);
   // out = one V-cycle from zero on S out = in (the preconditioner P⁻¹ in).
   void apply(Eigen::Ref<const Vec> in, Eigen::Ref<Vec> out);
   const Statistics& statistics() const { return stats_; }

@@ -13,7 +13,9 @@ void zero_fixed(Vec& x, const std::vector<int>& fixed) {
 
 void BackwardEuler::initialize(Model& model, double t0, const Vec& q0, const Vec& v0, const IntegratorOptions& opt) {
   bind(model, t0, q0, v0, opt);
-  allocate_evaluation(model, ev_);
+  // The model shapes what each evaluation asks for: be-linear's one-pass step
+  // (Model::evaluate_step) holds no ∂f/∂q, ∂f/∂v or M beside A.
+  ev_ = Evaluation{};
   have_mass_ = false;
   dv_step_ = 0.0;
   a_ = model.pattern();

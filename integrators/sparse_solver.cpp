@@ -128,31 +128,49 @@ class Cholesky : public Eigen::CholmodDecomposition<Matrix64, Eigen::Lower> {
 
 // A by rows (compressed sparse rows, 32-bit indices) for GMRES's products:
 // y_i = Σ_k a_ik x_k is one gather and one running sum per entry, where the
-// column-major A x scatters into y (a load and a store per entry).
+// column-major A x scatters into y (a load and a store per entry). On a
+// structurally symmetric pattern row i holds column i's indices, and its
+// values are A's transposed entries (`transpose`, the solver's map): no map
+// of its own is kept.
 class RowCopy {
  public:
-  explicit RowCopy(const Matrix64& a) {
+  RowCopy(const Matrix64& a, const std::vector<int>& transpose) {
     const auto rows = static_cast<size_t>(a.rows());
+    values_.resize(a.nonZeros());
+    if (std::find(transpose.begin(), transpose.end(), -1) == transpose.end()) {
+      auto narrow = [](std::int64_t i) { return static_cast<int>(i); };
+      outer_.resize(rows + 1);
+      inner_.resize(a.nonZeros());
+      std::transform(a.outerIndexPtr(), a.outerIndexPtr() + rows + 1, outer_.begin(), narrow);
+      std::transform(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), inner_.begin(), narrow);
+      from_ = &transpose;
+      return;
+    }
     outer_.assign(rows + 1, 0);
     for (std::int64_t k = 0; k < a.nonZeros(); ++k) ++outer_[a.innerIndexPtr()[k] + 1];
     for (size_t i = 0; i < rows; ++i) outer_[i + 1] += outer_[i];
     inner_.resize(a.nonZeros());
-    from_.resize(a.nonZeros());
-    values_.resize(a.nonZeros());
+    own_from_.resize(a.nonZeros());
     std::vector<int> next(outer_.begin(), outer_.end() - 1);
     for (std::int64_t col = 0; col < a.cols(); ++col)  // columns in order: each row's come out sorted
       for (std::int64_t k = a.outerIndexPtr()[col]; k < a.outerIndexPtr()[col + 1]; ++k) {
         const int at = next[a.innerIndexPtr()[k]]++;
         inner_[at] = static_cast<int>(col);
-        from_[at] = k;
+        own_from_[at] = static_cast<int>(k);
       }
+    from_ = &own_from_;
   }
+  RowCopy(const RowCopy&) = delete;
+  RowCopy& operator=(const RowCopy&) = delete;
   // Copies A's values (same pattern as at construction).
   void update(const Matrix64& a) {
     const double* v = a.valuePtr();
-    for (size_t k = 0; k < from_.size(); ++k) values_[k] = v[from_[k]];
+    const std::vector<int>& from = *from_;
+    for (size_t k = 0; k < from.size(); ++k) values_[k] = v[from[k]];
   }
-  double bytes() const { return 4.0 * outer_.size() + (4.0 + 8.0 + 8.0) * static_cast<double>(values_.size()); }
+  double bytes() const {
+    return 4.0 * outer_.size() + (4.0 + 8.0) * static_cast<double>(values_.size()) + 4.0 * own_from_.size();
+  }
   void multiply(Eigen::Ref<const Vec> x, Eigen::Ref<Vec> y) const {
     for (size_t i = 0; i + 1 < outer_.size(); ++i) {
       double s = 0.0;
@@ -163,7 +181,8 @@ class RowCopy {
 
  private:
   std::vector<int> outer_, inner_;
-  std::vector<std::int64_t> from_;
+  std::vector<int> own_from_;  // row-order entry -> A's entry, where the pattern is not symmetric
+  const std::vector<int>* from_ = nullptr;
   std::vector<double> values_;
 };
 
@@ -193,7 +212,7 @@ struct SparseSolver::Impl {
   Eigen::UmfPackLU<Matrix64> lu;
   Cholesky llt;
   bool lu_analyzed = false, llt_analyzed = false;
-  Matrix64 sym;  // S = (A + Aᵀ)/2 on reduced_'s pattern (gmres)
+  Matrix64 sym;  // S = (A + Aᵀ)/2 on reduced_'s pattern (gmres's factor; amg forms S in hypre's storage)
   std::unique_ptr<Gmres> gmres;
   std::unique_ptr<RowCopy> rows;  // A by rows for GMRES's products, updated by factorize()
   std::unique_ptr<AmgPreconditioner> amg;
@@ -243,7 +262,7 @@ SparseSolver::SparseSolver(const SparseMatrix& pattern, std::span<const int> fix
     const Index64 rc = reduced_index[col];
     if (rc < 0) continue;
     Index64 k = reduced_.outerIndexPtr()[rc];
-    for (Index64 p = pattern.outerIndexPtr()[col]; p < pattern.outerIndexPtr()[col + 1]; ++p)
+    for (int p = pattern.outerIndexPtr()[col]; p < pattern.outerIndexPtr()[col + 1]; ++p)
       if (reduced_index[pattern.innerIndexPtr()[p]] >= 0) value_map_[k++] = p;
   }
   // And to its transposed entry (−1 where the pattern lacks it), for ‖A − Aᵀ‖ and S.
@@ -254,7 +273,7 @@ SparseSolver::SparseSolver(const SparseMatrix& pattern, std::span<const int> fix
     for (Index64 k = outer[col]; k < outer[col + 1]; ++k) {
       const Index64 row = inner[k];
       const Index64* hit = std::lower_bound(inner + outer[row], inner + outer[row + 1], col);
-      transpose_map_[k] = hit != inner + outer[row + 1] && *hit == col ? hit - inner : -1;
+      transpose_map_[k] = hit != inner + outer[row + 1] && *hit == col ? static_cast<int>(hit - inner) : -1;
     }
   // The step matrix is structurally symmetric (full stencil blocks): UMFPACK's
   // symmetric strategy with a METIS nested-dissection ordering of A + Aᵀ gives
@@ -320,7 +339,7 @@ SparseSolver::Memory SparseSolver::memory() const {
     return (8.0 + 8.0) * static_cast<double>(m.nonZeros()) + 8.0 * (m.outerSize() + 1.0);
   };
   Memory mem;
-  mem.matrices = sparse_bytes(reduced_) + sparse_bytes(impl_->sym) + 8.0 * (value_map_.size() + transpose_map_.size()) +
+  mem.matrices = sparse_bytes(reduced_) + sparse_bytes(impl_->sym) + 4.0 * (value_map_.size() + transpose_map_.size()) +
                  4.0 * free_.size() + (impl_->rows ? impl_->rows->bytes() : 0.0);
   if (impl_->amg) {
     const AmgPreconditioner::Statistics& a = impl_->amg->statistics();
@@ -376,10 +395,9 @@ void SparseSolver::update_symmetric_part() const {
 }
 
 bool SparseSolver::factor_amg() const {
-  update_symmetric_part();
   if (!impl_->amg) impl_->amg = std::make_unique<AmgPreconditioner>(dof_kinds_from_pattern(reduced_));
   impl_->fresh_iterations = -1;
-  return impl_->amg->setup(impl_->sym, failure_);
+  return impl_->amg->setup(reduced_, transpose_map_, failure_);
 }
 
 bool SparseSolver::factor_preconditioner() const {
@@ -423,7 +441,7 @@ bool SparseSolver::factorize(const SparseMatrix& a) {
     case LinearSolverMethod::gmres:
     case LinearSolverMethod::amg: {
       if (!impl_->gmres) impl_->gmres = std::make_unique<Gmres>(num_free(), kGmresRestart);
-      if (!impl_->rows) impl_->rows = std::make_unique<RowCopy>(reduced_);
+      if (!impl_->rows) impl_->rows = std::make_unique<RowCopy>(reduced_, transpose_map_);
       impl_->rows->update(reduced_);
       impl_->precond_current = false;
       ++impl_->reuses;

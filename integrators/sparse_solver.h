@@ -145,9 +145,10 @@ class SparseSolver {
 
   Options options_;
   LinearSolverMethod method_;
-  std::vector<int> free_;                                          // reduced index -> full index
-  std::vector<Index64> value_map_;                                 // reduced nnz -> full nnz
-  std::vector<Index64> transpose_map_;                             // reduced nnz -> nnz of the transposed entry
+  std::vector<int> free_;  // reduced index -> full index
+  // 32-bit: the model's pattern has 32-bit indices (fewer than 2³¹ entries).
+  std::vector<int> value_map_;      // reduced nnz -> full nnz
+  std::vector<int> transpose_map_;  // reduced nnz -> nnz of the transposed entry (−1: none)
   Eigen::SparseMatrix<double, Eigen::ColMajor, Index64> reduced_;  // A on the free DoFs
   std::unique_ptr<Impl> impl_;
   mutable Statistics stats_;

@@ -1,7 +1,9 @@
 #include "models/core/assembly.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include "models/core/sparsity_pattern.h"
 #include "models/core/step_stiffness.h"
@@ -48,22 +50,39 @@ std::vector<int> colour_elements(const Term& term, int num_dofs, int* num_colour
   return colour;
 }
 
-// global[slot] += local over an element's n×n block; slot −1 (a constant's
-// entry) only where `checked` (a term with constants in its stencils).
-void scatter_block(bool checked, int nn, const int* slots, const double* local, double* global) {
-  if (checked) {
-    for (int ab = 0; ab < nn; ++ab)
-      if (slots[ab] >= 0) global[slots[ab]] += local[ab];
-    return;
-  }
+// Where an element's n×n block goes in the pattern's values: entry (a, b)
+// at start[b] + place[a + n b] (start −1: a constant's column; place
+// kNoRow: a constant's row).
+struct BlockPlace {
+  const int* start;
+  const std::uint16_t* place;
+};
+constexpr std::uint16_t kNoRow = 0xFFFF;
+
+// global[entry (a, b)] += local[a + n b] over an element's n×n block, in the
+// order of a + n b; constants' rows and columns skipped only where `checked`
+// (a term with constants in its stencils).
+void scatter_block(bool checked, int n, BlockPlace at, const double* local, double* global) {
+  for (int b = 0; b < n; ++b) {
+    const double* lb = local + n * b;
+    const std::uint16_t* pb = at.place + n * b;
+    if (checked) {
+      if (at.start[b] < 0) continue;
+      double* column = global + at.start[b];
+      for (int a = 0; a < n; ++a)
+        if (pb[a] != kNoRow) column[pb[a]] += lb[a];
+      continue;
+    }
+    double* column = global + at.start[b];
 #pragma GCC unroll 4
-  for (int ab = 0; ab < nn; ++ab) global[slots[ab]] += local[ab];
+    for (int a = 0; a < n; ++a) column[pb[a]] += lb[a];
+  }
 }
 
-// A[slot] += c_m m + c_v d + c_q k over an element's n×n block (d, m: null
+// A[entry] += c_m m + c_v d + c_q k over an element's n×n block (d, m: null
 // where the term provides none). The block is combined in k first (a loop
 // the compiler vectorizes), then scattered: k is overwritten.
-void add_step_block(const StepWeights& c, bool checked, int n, const int* slots, double* k, const double* d,
+void add_step_block(const StepWeights& c, bool checked, int n, BlockPlace at, double* k, const double* d,
                     const double* m, double* a) {
   const int nn = n * n;
   const double cq = c.dfdq, cv = c.dfdv, cm = c.mass;
@@ -75,7 +94,7 @@ void add_step_block(const StepWeights& c, bool checked, int n, const int* slots,
     for (int ab = 0; ab < nn; ++ab) k[ab] = cq * k[ab] + cm * m[ab];
   else
     for (int ab = 0; ab < nn; ++ab) k[ab] *= cq;
-  scatter_block(checked, nn, slots, k, a);
+  scatter_block(checked, n, at, k, a);
 }
 
 // out[s[a]] += Σ_b block(a, b) w_b over the DoF rows of a column-major n×n
@@ -98,10 +117,14 @@ Assembly::Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std
     : num_dofs_(num_dofs), pattern_(build_sparsity_pattern(num_dofs, terms, extra)) {
   const int* outer = pattern_.outerIndexPtr();
   const int* inner = pattern_.innerIndexPtr();
-  auto slot_of = [&](int row, int col) {
+  for (int col = 0; col < num_dofs; ++col)
+    if (outer[col + 1] - outer[col] >= kNoRow)
+      throw std::length_error("assembly: DoF " + std::to_string(col) + " is coupled to " +
+                              std::to_string(outer[col + 1] - outer[col]) + " DoFs, more than the " +
+                              std::to_string(kNoRow - 1) + " a scatter plan's 16-bit row places hold");
+  auto place_of = [&](int row, int col) {
     const int* begin = inner + outer[col];
-    const int* end = inner + outer[col + 1];
-    return static_cast<int>(std::lower_bound(begin, end, row) - inner);
+    return static_cast<std::uint16_t>(std::lower_bound(begin, inner + outer[col + 1], row) - begin);
   };
 
   for (Term* t : terms) {
@@ -118,14 +141,21 @@ Assembly::Assembly(int num_dofs, std::vector<Term*> terms, const std::vector<std
     std::vector<int> fill(plan.colour_start.begin(), plan.colour_start.end() - 1);
     for (int e = 0; e < ne; ++e) plan.order[fill[colour[e]]++] = e;
     const int n = plan.n;
-    plan.slots.assign(static_cast<size_t>(ne) * n * n, -1);
+    plan.column_start.assign(static_cast<size_t>(ne) * n, -1);
+    plan.row_place.assign(static_cast<size_t>(ne) * n * n, kNoRow);
     for (int e = 0; e < ne; ++e) {
       auto s = t->stencil(e);
-      for (int b = 0; b < n; ++b)
+      for (int b = 0; b < n; ++b) {
+        if (!is_dof(s[b])) {
+          plan.has_constants = true;
+          continue;
+        }
+        plan.column_start[static_cast<size_t>(e) * n + b] = outer[s[b]];
         for (int a = 0; a < n; ++a)
-          if (is_dof(s[a]) && is_dof(s[b])) plan.slots[(static_cast<size_t>(e) * n + b) * n + a] = slot_of(s[a], s[b]);
+          if (is_dof(s[a])) plan.row_place[(static_cast<size_t>(e) * n + b) * n + a] = place_of(s[a], s[b]);
+          else plan.has_constants = true;
+      }
     }
-    plan.has_constants = std::find(plan.slots.begin(), plan.slots.end(), -1) != plan.slots.end();
     plans_.push_back(std::move(plan));
   }
 }
@@ -205,18 +235,19 @@ void Assembly::add_term(const TermPlan& plan, const Vec& q, const Vec& v, const 
       }
       for (int a = 0; a < n; ++a)
         if (is_dof(s[a])) f[s[a]] += fl[a];
-      const int* slots = plan.slots.data() + static_cast<size_t>(e) * n * n;
+      const BlockPlace at{plan.column_start.data() + static_cast<size_t>(e) * n,
+                          plan.row_place.data() + static_cast<size_t>(e) * n * n};
       if (av) {  // A += c_m M_e + c_v D_e + c_q K_e, docs/models.md §7.2
         if (w) {
           for (int a = 0; a < n; ++a) wl[a] = is_dof(s[a]) ? (*w)[s[a]] : 0.0;
           add_block_product(k_symmetric, n, s.data(), kl, wl, *req.dfdq_w);
         }
-        add_step_block(*step, plan.has_constants, n, slots, kl, want_d ? dl : nullptr, want_m ? ml : nullptr, av);
+        add_step_block(*step, plan.has_constants, n, at, kl, want_d ? dl : nullptr, want_m ? ml : nullptr, av);
         continue;
       }
-      if (kv) scatter_block(plan.has_constants, n * n, slots, kl, kv);
-      if (dv) scatter_block(plan.has_constants, n * n, slots, dl, dv);
-      if (mv) scatter_block(plan.has_constants, n * n, slots, ml, mv);
+      if (kv) scatter_block(plan.has_constants, n, at, kl, kv);
+      if (dv) scatter_block(plan.has_constants, n, at, dl, dv);
+      if (mv) scatter_block(plan.has_constants, n, at, ml, mv);
     }
   };
 

@@ -5,6 +5,7 @@
 // touch the same DoF; a colour is evaluated in parallel without locks and the
 // summation order is fixed, so results are bitwise reproducible.
 #pragma once
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -83,8 +84,12 @@ class Assembly {
     int n;
     std::vector<int> colour_start;  // elements sorted by colour: order[colour_start[c] .. colour_start[c+1])
     std::vector<int> order;
-    std::vector<int> slots;      // per element n*n value indices into pattern_ (-1 where no DoF)
-    bool has_constants = false;  // some slot is −1
+    // Where each element's n×n block goes in pattern_'s values: per stencil
+    // column b the start of column s[b] (−1 for a constant), per entry (a, b)
+    // the row's place in that column (0xFFFF for a constant), b-major.
+    std::vector<int> column_start;
+    std::vector<std::uint16_t> row_place;
+    bool has_constants = false;  // some stencil holds a constant
   };
   void add_term(const TermPlan& plan, const Vec& q, const Vec& v, const Vec& constants, const AssemblyRequest& req,
                 Vec& f, SparseMatrix* dfdq, SparseMatrix* dfdv, SparseMatrix* mass) const;

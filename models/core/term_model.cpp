@@ -3,6 +3,23 @@
 #include <algorithm>
 
 namespace wl {
+namespace {
+
+// Sizes the force and makes the matrices `flags` asks for (kDfdq, kDfdv,
+// kMass) pattern-shaped, leaving the others as they are (an evaluation that
+// never asks for a matrix holds none) and the values already in place.
+void shape_evaluation(const Model& model, unsigned flags, Evaluation& out) {
+  const SparseMatrix& p = model.pattern();
+  if (out.force.size() != model.num_dofs()) out.force = Vec::Zero(model.num_dofs());
+  auto shape = [&](unsigned bit, SparseMatrix& m) {
+    if ((flags & bit) && (m.rows() != p.rows() || m.nonZeros() != p.nonZeros())) m = p;
+  };
+  shape(kDfdq, out.dfdq);
+  shape(kDfdv, out.dfdv);
+  shape(kMass, out.mass);
+}
+
+}  // namespace
 
 void allocate_evaluation(const Model& model, Evaluation& out) {
   out.force = Vec::Zero(model.num_dofs());
@@ -13,7 +30,9 @@ void allocate_evaluation(const Model& model, Evaluation& out) {
 
 void Model::evaluate_step(double t, const Vec& q, const Vec& v, const StepWeights& w, Evaluation& scratch,
                           SparseMatrix& a, Vec& r) {
-  evaluate(t, q, v, kForce | kDfdq | kStepStiffness | kDfdv | (w.constant_mass ? 0u : kMass), scratch);
+  const unsigned flags = kForce | kDfdq | kStepStiffness | kDfdv | (w.constant_mass ? 0u : kMass);
+  shape_evaluation(*this, flags, scratch);
+  evaluate(t, q, v, flags, scratch);
   form_step(scratch, w, a, &r);
 }
 
@@ -34,7 +53,7 @@ void form_step(const Evaluation& ev, const StepWeights& w, SparseMatrix& a, Vec*
 }
 
 double Model::kinetic_energy(double t, const Vec& q, const Vec& v, Evaluation& scratch) {
-  if (scratch.force.size() != num_dofs()) allocate_evaluation(*this, scratch);
+  shape_evaluation(*this, kMass, scratch);
   evaluate(t, q, v, kMass, scratch);
   return 0.5 * v.dot(scratch.mass * v);
 }
@@ -67,7 +86,7 @@ void TermModel::replace_terms(std::vector<std::unique_ptr<Term>> terms) {
 }
 
 void TermModel::evaluate(double t, const Vec& q, const Vec& v, unsigned flags, Evaluation& out) {
-  if (out.force.size() != num_dofs_) allocate_evaluation(*this, out);
+  shape_evaluation(*this, flags, out);
   out.force.setZero();
   AssemblyRequest req{(flags & kDfdq) != 0, (flags & kDfdv) != 0, (flags & kMass) != 0};
   req.step_stiffness = (flags & kStepStiffness) != 0;
@@ -116,7 +135,7 @@ void TermModel::evaluate_step(double t, const Vec& q, const Vec& v, const StepWe
     Model::evaluate_step(t, q, v, w, scratch, a, r);
     return;
   }
-  if (scratch.force.size() != num_dofs_) allocate_evaluation(*this, scratch);
+  shape_evaluation(*this, kForce, scratch);  // the matrices are not used: A is formed in `a`
   scratch.force.setZero();
   r.setZero(num_dofs_);  // (∂f/∂q)·w first
   double* av = a.valuePtr();

@@ -6,6 +6,7 @@
 #include "driver/memory_estimate.h"
 #include "driver/run_settings.h"
 #include "integrators/amg_preconditioner.h"
+#include "integrators/sparse_solver.h"
 #include "models/model_factory.h"
 
 namespace wl {
@@ -264,10 +265,28 @@ TEST(RunSettings, AClothThatCannotFitIsRefusedWithItsEstimate) {
   Scene s65 = parse_scene("[cloth]\nwarps = 65\nwefts = 65\n", "a.toml"), s257 = s65;
   s257.warps = s257.wefts = 257;
   EXPECT_EQ(estimate_run_memory(s65, "yarn").dofs, 20613);  // README: the 65×65 cloth
-  // The 257×257 cloth: its DoFs, and an estimate above the peak measured with umfpack (5.15 GB, README).
+  // The 257×257 cloth: its DoFs, and on the factor routes an estimate above
+  // the peak measured with umfpack (5.15 GB, before the cuts of docs/design.md §11.1).
+  s257.linear_solver = "umfpack";
   const MemoryEstimate e257 = estimate_run_memory(s257, "yarn");
   EXPECT_EQ(e257.dofs, 328197);
   EXPECT_GT(e257.bytes, 5.15e9);
+  // auto takes the AMG route there where hypre is built, and its estimate is
+  // above the whole run's peak with amg (1.67 GB, the scale study's estimate
+  // table) and below the factor routes'.
+  s257.linear_solver = "auto";
+  EXPECT_EQ(takes_amg_route(s257, "yarn", e257.dofs), amg_available());
+  s257.linear_solver = "amg";
+  const MemoryEstimate amg257 = estimate_run_memory(s257, "yarn");
+  EXPECT_TRUE(takes_amg_route(s257, "yarn", amg257.dofs));
+  EXPECT_GT(amg257.bytes, 1.67e9);
+  EXPECT_LT(amg257.bytes, e257.bytes);
+  // Below twice auto's amg size, and for the models not measured on it, the factor routes' fit.
+  s257.linear_solver = "auto";
+  EXPECT_FALSE(takes_amg_route(s257, "yarn", 2L * kAmgMinFree - 1));
+  EXPECT_FALSE(takes_amg_route(s257, "fem", e257.dofs));
+  s257.linear_solver = "amg";
+  EXPECT_FALSE(takes_amg_route(s257, "fem", e257.dofs));
 }
 
 // A knit of `courses` × `wales` loops, with the [fem] stiffnesses its continuum needs.

@@ -276,6 +276,41 @@ TEST(SparseSolver, AutoPicksAmgFromItsSizeOn) {
   }
 }
 
+// A pattern holding an entry whose transpose it lacks (and a fixed DoF): the
+// row copy GMRES multiplies with keeps its own map from rows to A's entries,
+// and the amg route's S its half of the lone entry; both reach their
+// tolerance, near UMFPACK's solution.
+TEST(SparseSolver, StructurallyNonSymmetricPatternSolves) {
+  const int n = 400;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 4.0 + 0.01 * i);
+    if (i > 0) t.emplace_back(i, i - 1, -1.0);
+    if (i + 1 < n) t.emplace_back(i, i + 1, -1.0);
+  }
+  t.emplace_back(n - 1, 0, 0.3);  // (0, n − 1) is not in the pattern
+  SparseMatrix a(n, n);
+  a.setFromTriplets(t.begin(), t.end());
+  a.makeCompressed();
+  const std::vector<int> fixed = {7};
+  const Vec b = random_rhs(n, 11);
+  SparseSolver ref(a, fixed);
+  Vec x_ref;
+  ASSERT_TRUE(ref.factorize(a));
+  ASSERT_TRUE(ref.solve(b, x_ref));
+  std::vector<LinearSolverMethod> methods = {LinearSolverMethod::gmres};
+  if (amg_available()) methods.push_back(LinearSolverMethod::amg);
+  for (LinearSolverMethod method : methods) {
+    SparseSolver s(a, fixed, {method, {"test"}});
+    ASSERT_TRUE(s.factorize(a)) << s.failure();
+    Vec x;
+    ASSERT_TRUE(s.solve(b, x)) << s.failure();
+    EXPECT_LE(relative_residual(a, x, b, fixed), 1.01 * kGmresTolerance) << to_string(method);
+    EXPECT_LE((x - x_ref).norm() / x_ref.norm(), 1e-9) << to_string(method);
+    EXPECT_GT(s.statistics().krylov_iterations, 0) << to_string(method);
+  }
+}
+
 TEST(SparseSolver, AmgWithoutHypreIsRefused) {
   if (amg_available()) GTEST_SKIP() << "weavelab built with hypre: amg is available";
   const SparseMatrix a = shifted_laplacian(10);

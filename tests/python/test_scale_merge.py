@@ -1,7 +1,8 @@
 """The scale study's merge (experiments/scale/scripts/merge_scale.py) on synthetic cells: a cell
 its CPU limit stopped (no CSV row, SIGXCPU in its /usr/bin/time -v report) becomes a row with
-that status, the CPU time and peak it reached, and stays out of the ratios and the breakdown; a
-cell with neither a row nor that report is exit 2."""
+that status, the CPU time and peak it reached, and stays out of the ratios, the breakdown and the
+estimate table (each other cell's estimate over its peak); a cell with neither a row nor that
+report is exit 2."""
 import csv
 import os
 import subprocess
@@ -14,7 +15,8 @@ from support import SOURCE_DIR
 SCRIPT = os.path.join(SOURCE_DIR, "experiments", "scale", "scripts", "merge_scale.py")
 COLUMNS = ["scene", "model", "requested", "solver", "dofs", "nnz", "steps", "step_ms", "step_cpu_ms", "krylov_per_step",
            "factorizations_per_step", "rss_start_mb", "peak_model_mb", "rss_model_mb", "rss_initialized_mb",
-           "rss_end_mb", "peak_mb", "solver_matrices_mb", "preconditioner_mb", "krylov_mb", "scatter_plans_mb"]
+           "rss_end_mb", "peak_mb", "solver_matrices_mb", "preconditioner_mb", "krylov_mb", "scatter_plans_mb",
+           "pattern_mb", "estimate_mb"]
 
 
 def report(user_s, rss_kb, signal=None):
@@ -29,16 +31,17 @@ def write_cell(folder, name, step_ms=None, user_s=10.0, rss_kb=1000, signal=None
             w = csv.writer(f, lineterminator="\n")
             w.writerow(COLUMNS)
             w.writerow(["s.toml", "yarn", "x", "x", 1000, 5000, 2, step_ms, step_ms / 2, 8, 0.5, 10, 50, 40, 60, 70, 80,
-                        5, 6, 7, 8])
+                        5, 6, 7, 8, 9, 100])
     with open(os.path.join(folder, name + ".time"), "w") as f:
         f.write(report(user_s, rss_kb, signal))
     return os.path.join(folder, name + ".csv")
 
 
 def merge(folder, cells):
-    out = {k: os.path.join(folder, k + ".out.csv") for k in ("table", "ratios", "breakdown")}
+    out = {k: os.path.join(folder, k + ".out.csv") for k in ("table", "ratios", "breakdown", "estimates")}
     proc = subprocess.run([sys.executable, SCRIPT, "--table", out["table"], "--ratios", out["ratios"], "--breakdown",
-                           out["breakdown"], "--cells", *cells], capture_output=True, text=True)
+                           out["breakdown"], "--estimates", out["estimates"], "--cells", *cells],
+                          capture_output=True, text=True)
     rows = {}
     if proc.returncode == 0:
         for k, path in out.items():
@@ -65,6 +68,11 @@ class ScaleMerge(unittest.TestCase):
             # The breakdown is of the largest size measured by a cell that finished: 33 (amg alone).
             self.assertEqual({r["size"] for r in rows["breakdown"]}, {"33×33"})
             self.assertNotIn("gmres", rows["breakdown"][0])
+            # The estimate (100 MB) over each finished cell's peak as its table row gives it (1000 kB of
+            # /usr/bin/time -v: 1.0 MB at the table's 0.1 MB).
+            self.assertEqual([(r["size"], r["solver"]) for r in rows["estimates"]],
+                             [("17", "amg"), ("17", "gmres"), ("33", "amg")])
+            self.assertEqual({r["estimate_over_peak"] for r in rows["estimates"]}, {"100.000"})
 
     def test_a_cell_without_a_row_that_was_not_stopped_fails(self):
         with tempfile.TemporaryDirectory() as tmp:

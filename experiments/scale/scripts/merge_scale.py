@@ -103,8 +103,10 @@ def breakdown(cells, runs):
         ("transient while building the model (above what it holds after)",
          lambda c: f(c, "peak_model_mb") - f(c, "rss_model_mb")),
         ("model built: stencils, pattern, per-term caches", lambda c: f(c, "rss_model_mb") - f(c, "rss_start_mb")),
-        ("  of the model: assembly scatter maps (n² slots per element, from the stencils)",
-         lambda c: f(c, "scatter_plans_mb")),
+        ("  of the model: assembly scatter plans (per element a 4-byte column start per DoF, "
+         "a 2-byte row place per block entry; from the stencils)", lambda c: f(c, "scatter_plans_mb")),
+        ("  of the model: sparsity pattern (8-byte values, 4-byte indices; the step matrix A is one more)",
+         lambda c: f(c, "pattern_mb")),
         ("integrator initialized: step matrices, evaluation buffers",
          lambda c: f(c, "rss_initialized_mb") - f(c, "rss_model_mb")),
         ("steps done: preconditioner, Krylov bases, solver copies",
@@ -127,11 +129,29 @@ def breakdown(cells, runs):
     return [dict(r, size=f"{largest}×{largest}") for r in rows], ["size", "part"] + [c["solver"] for c in chosen]
 
 
+def estimates(cells, runs):
+    """Per cell: the step's peak, the whole run's (where measured) and what weavelab run estimates [MB]."""
+    out = []
+    for c in cells:
+        if c["status"] != "ok" or "estimate_mb" not in c:
+            continue
+        run = runs.get((c["size"], c["solver"]))
+        run_peak = max_rss_mb(run) if run else None
+        highest = max(float(c["max_rss_mb"]), run_peak or 0.0)
+        out.append({"size": c["size"], "solver": c["solver"], "dofs": c["dofs"], "step_peak_mb": c["max_rss_mb"],
+                    "run_peak_mb": f"{run_peak:.1f}" if run_peak else "",
+                    "estimate_mb": c["estimate_mb"],
+                    "estimate_over_peak": f"{float(c['estimate_mb']) / highest:.3f}",
+                    "peak_bytes_per_dof": f"{highest * 1e6 / int(c['dofs']):.0f}"})
+    return out
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__)
     p.add_argument("--table", required=True)
     p.add_argument("--ratios", required=True)
     p.add_argument("--breakdown", required=True)
+    p.add_argument("--estimates", required=True)
     p.add_argument("--cells", nargs="+", required=True)
     p.add_argument("--runs", nargs="*", default=[])
     a = p.parse_args()
@@ -146,6 +166,7 @@ def main():
     columns = ["size", "solver", "status", "requested", "dofs", "nnz", "steps", "step_ms", "step_cpu_ms", "krylov_per_step",
                "factorizations_per_step", "rss_start_mb", "peak_model_mb", "rss_model_mb", "rss_initialized_mb", "rss_end_mb",
                "peak_mb", "max_rss_mb", "solver_matrices_mb", "preconditioner_mb", "krylov_mb", "scatter_plans_mb",
+               "pattern_mb", "estimate_mb",
                "bytes_per_dof",
                "scene"]
     write_csv(a.table, cells, columns)
@@ -153,6 +174,8 @@ def main():
     write_csv(a.ratios, r, list(r[0].keys()) if r else ["size"])
     rows, cols = breakdown(cells, runs)
     write_csv(a.breakdown, rows, cols)
+    write_csv(a.estimates, estimates(cells, runs), ["size", "solver", "dofs", "step_peak_mb", "run_peak_mb",
+                                                   "estimate_mb", "estimate_over_peak", "peak_bytes_per_dof"])
 
 
 if __name__ == "__main__":
