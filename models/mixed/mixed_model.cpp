@@ -1,9 +1,13 @@
 #include "models/mixed/mixed_model.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "models/fem/fem_model.h"
+#include "models/fem/terms/nodal_gravity.h"
+#include "models/mixed/interface_mass.h"
 #include "models/mixed/region_term.h"
 
 namespace wl {
@@ -60,6 +64,10 @@ class ContinuumShares {
     throw std::logic_error("mixed model: no continuum share for term '" + name + "' (docs/models.md §12.3)");
   }
 
+  // Per vertex: the mass an interface crossing lacks against a quarter of each continuum cell
+  // around it (docs/models.md §12.4); 0 off the interface.
+  const std::vector<double>& interface_mass() const { return interface_mass_; }
+
  private:
   int i(int v) const { return v % region_.nu(); }
   int j(int v) const { return v / region_.nu(); }
@@ -73,10 +81,11 @@ class ContinuumShares {
     if (j(a) == j(b)) return 1.0 - region_.segment_share(std::min(i(a), i(b)), j(a), true);
     return 1.0 - region_.segment_share(i(a), std::min(j(a), j(b)), false);
   }
-  // Per vertex: the part of its lumped mass that continuum triangles give it (exactly 1 when all do).
+  // Per vertex: the part of its lumped mass that continuum triangles give it (exactly 1 when all do),
+  // and what a quarter of each continuum cell around an interface crossing adds to it.
   void set_vertex_mass_shares(const FemModel& fem) {
-    const int nv = region_.nu() * region_.nv();
-    std::vector<double> continuum(nv, 0.0), total(nv, 0.0);
+    const int nu = region_.nu(), nv = nu * region_.nv();
+    std::vector<double> continuum(nv, 0.0), total(nv, 0.0), cell_mass((nu - 1) * (region_.nv() - 1), 0.0);
     for (const auto& term : fem.terms()) {
       if (term->name() != "fem-mass") continue;
       double q[9], v[9], f[9], m[81];
@@ -87,18 +96,31 @@ class ContinuumShares {
         term->evaluate(e, q, v, ElementOutput{f, nullptr, nullptr, m});
         const auto s = term->stencil(e);
         const double share = triangle(s[0] / 3, s[3] / 3, s[6] / 3);
+        const int cell = std::min({i(s[0] / 3), i(s[3] / 3), i(s[6] / 3)}) +
+                         (nu - 1) * std::min({j(s[0] / 3), j(s[3] / 3), j(s[6] / 3)});
         for (int k = 0; k < 3; ++k) {
           total[s[3 * k] / 3] += m[30 * k];  // the diagonal entry (3k, 3k) of the 9×9 block
           continuum[s[3 * k] / 3] += share * m[30 * k];
+          cell_mass[cell] += share * m[30 * k];
         }
       }
     }
     mass_share_.resize(nv);
     for (int k = 0; k < nv; ++k) mass_share_[k] = continuum[k] == total[k] ? 1.0 : continuum[k] / total[k];
+    interface_mass_.assign(nv, 0.0);
+    for (int k = 0; k < nv; ++k) {
+      const double yarn = region_.crossing_share(i(k), j(k));
+      if (yarn == 0.0 || yarn == 1.0) continue;
+      double quarters = 0.0;
+      for (int a = i(k) - 1; a <= i(k); ++a)
+        for (int b = j(k) - 1; b <= j(k); ++b)
+          if (a >= 0 && b >= 0 && a < nu - 1 && b < region_.nv() - 1) quarters += cell_mass[a + (nu - 1) * b] / 4;
+      interface_mass_[k] = quarters - continuum[k];
+    }
   }
 
   const YarnRegion& region_;
-  std::vector<double> mass_share_;
+  std::vector<double> mass_share_, interface_mass_;
 };
 
 std::string rectangles_text(const std::vector<std::array<int, 4>>& rectangles) {
@@ -109,6 +131,30 @@ std::string rectangles_text(const std::vector<std::array<int, 4>>& rectangles) {
             ", " + std::to_string(r[3]) + "]";
   }
   return text + "]";
+}
+
+// The interface crossings' mass corrections (docs/models.md §12.4) and gravity on them, where the
+// continuum's lumping leaves one (round-off differences of a cell's mass on straight sides are not).
+void add_interface_mass(const Scene& scene, const FemModel& fem, const WovenGrid& grid,
+                        const std::vector<double>& delta, std::vector<std::unique_ptr<Term>>& out) {
+  const double rho = fem.material().areal_density_kg_per_m2;
+  const double negligible = 1e-12 * rho * scene.spacing_m * scene.spacing_m;
+  auto mass = std::make_unique<InterfaceMassTerm>();
+  const Vec3 g(scene.gravity_m_per_s2[0], scene.gravity_m_per_s2[1], scene.gravity_m_per_s2[2]);
+  bool gravity = false;
+  for (const auto& term : fem.terms()) gravity = gravity || term->name() == "fem-gravity";
+  auto weight = std::make_unique<NodalGravityTerm>(g);
+  for (int v = 0; v < static_cast<int>(delta.size()); ++v) {
+    if (std::abs(delta[v]) <= negligible) continue;
+    const int x = grid.dofs(v).x;
+    mass->add({x, x + 1, x + 2}, delta[v]);
+    mass->tag_last(kFemArealDensity, rho);
+    weight->add({x, x + 1, x + 2}, delta[v]);
+    weight->tag_last(kFemArealDensity, rho);
+  }
+  if (mass->num_elements() == 0) return;
+  out.push_back(std::move(mass));
+  if (gravity) out.push_back(std::move(weight));
 }
 
 }  // namespace
@@ -132,6 +178,7 @@ std::vector<std::unique_ptr<Term>> continuum_terms(const Scene& scene, const Yar
     }
     if (!elements.empty()) out.push_back(std::make_unique<RegionTerm>(term->clone(), std::move(elements)));
   }
+  add_interface_mass(scene, fem, grid, shares.interface_mass(), out);
   return out;
 }
 

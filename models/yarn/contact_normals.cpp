@@ -65,6 +65,27 @@ ContactNormals::ContactNormals(const WovenGrid& grid, std::vector<double> warp_k
   eig_vec_.assign(n, Mat3::Zero());
   fit_points_.assign(n, {-1, -1, -1, -1, -1});
   fallback_.assign(n, 0);
+  active_.assign(n, 1);
+  fitted_ = active_;
+}
+
+void ContactNormals::set_active(std::vector<char> active) {
+  if (static_cast<int>(active.size()) != grid_.num_nodes())
+    throw std::invalid_argument("ContactNormals::set_active: " + std::to_string(active.size()) + " entries, expected " +
+                                std::to_string(grid_.num_nodes()));
+  active_ = std::move(active);
+  all_active_ = std::all_of(active_.begin(), active_.end(), [](char a) { return a != 0; });
+  fitted_.assign(active_.size(), 0);
+  const int nu = grid_.nu(), nv = grid_.nv();
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      if (!active_[grid_.node(i, j)]) continue;
+      for (int d = -2; d <= 2; ++d) {  // the crimped copies its segments and bending stencils reach
+        if (i + d >= 0 && i + d < nu) fitted_[grid_.node(i + d, j)] = 1;
+        if (j + d >= 0 && j + d < nv) fitted_[grid_.node(i, j + d)] = 1;
+      }
+    }
+  std::fill(fn_.begin(), fn_.end(), 0.0);
 }
 
 void ContactNormals::compute(const Vec& q) {
@@ -87,6 +108,7 @@ void ContactNormals::compute(const Vec& q) {
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i) {
       const int id = grid_.node(i, j);
+      if (!fitted_[id]) continue;
       const int ip = grid_.node(std::min(i + 1, nu - 1), j), im = grid_.node(std::max(i - 1, 0), j);
       const int jp = grid_.node(i, std::min(j + 1, nv - 1)), jm = grid_.node(i, std::max(j - 1, 0));
       const int pts[5] = {id, ip, im, jp, jm};
@@ -130,12 +152,14 @@ void ContactNormals::compute(const Vec& q) {
   for (int j = 0; j < nv; ++j) {
     for (int i = 0; i + 1 < nu; ++i) {
       const int a = grid_.node(i, j), b = grid_.node(i + 1, j);
+      if (!active_[a] && !active_[b]) continue;
       const auto f = StretchTerm::local_force(warp_stretch_at[a], warp_stretch_at[b], u_[a], u_[b], warp_ks_[j]);
       fu_[a] += f.segment<3>(0);
       fu_[b] += f.segment<3>(3);
     }
     for (int i = 1; i + 1 < nu; ++i) {
       const int c = grid_.node(i, j), nx = grid_.node(i + 1, j), pv = grid_.node(i - 1, j);
+      if (!active_[c] && !active_[nx] && !active_[pv]) continue;
       const auto f = BendingTerm::local_force(xw_[c], xw_[nx], xw_[pv], u_[nx], u_[pv], warp_kb_[j]);
       fu_[c] += f.segment<3>(0);
       fu_[nx] += f.segment<3>(3);
@@ -146,12 +170,14 @@ void ContactNormals::compute(const Vec& q) {
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j + 1 < nv; ++j) {
       const int a = grid_.node(i, j), b = grid_.node(i, j + 1);
+      if (!active_[a] && !active_[b]) continue;
       const auto f = StretchTerm::local_force(weft_stretch_at[a], weft_stretch_at[b], v_[a], v_[b], weft_ks_[i]);
       fv_[a] += f.segment<3>(0);
       fv_[b] += f.segment<3>(3);
     }
     for (int j = 1; j + 1 < nv; ++j) {
       const int c = grid_.node(i, j), nx = grid_.node(i, j + 1), pv = grid_.node(i, j - 1);
+      if (!active_[c] && !active_[nx] && !active_[pv]) continue;
       const auto f = BendingTerm::local_force(xf_[c], xf_[nx], xf_[pv], v_[nx], v_[pv], weft_kb_[i]);
       fv_[c] += f.segment<3>(0);
       fv_[nx] += f.segment<3>(3);
@@ -163,7 +189,7 @@ void ContactNormals::compute(const Vec& q) {
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i) {
       const int id = grid_.node(i, j);
-      fn_[id] = grid_.interior(i, j) ? std::max(0.0, 0.5 * n_[id].dot(fu_[id] - fv_[id])) : 0.0;
+      fn_[id] = grid_.interior(i, j) && active_[id] ? std::max(0.0, 0.5 * n_[id].dot(fu_[id] - fv_[id])) : 0.0;
     }
 }
 

@@ -46,6 +46,11 @@ class ContactNormals {
 
   // q: the full state (size grid.num_dofs()); frozen u/v come from grid.constants().
   void compute(const Vec& q);
+  // F_n, F^u and F^v only at the nodes marked (per node id; a mixed cloth's region, docs/models.md
+  // §12.2): compute() then fits normals only within two grid steps of them, which their crimped
+  // yarns reach, and F_n is 0 elsewhere. Default: every node. Throws std::invalid_argument on a
+  // wrong size; compute_gradient() needs every node.
+  void set_active(std::vector<char> active);
 
   const std::vector<double>& normal_force() const { return fn_; }  // per node id
   const std::vector<Vec3>& normal() const { return n_; }           // per node id, unit, warp → weft
@@ -84,7 +89,9 @@ class ContactNormals {
   std::vector<Vec3> eig_val_;
   std::vector<std::array<int, 5>> fit_points_;  // node ids, −1 unused
   std::vector<double> eig_sign_;
-  std::vector<char> fallback_;  // n from the orientation vector (points on a line)
+  std::vector<char> fallback_;         // n from the orientation vector (points on a line)
+  std::vector<char> active_, fitted_;  // per node: F_n wanted; normal and crimped copies needed
+  bool all_active_ = true;
   std::vector<GradientRow> grad_;
   std::vector<StiffnessParts> parts_;
 };

@@ -21,6 +21,7 @@
 namespace wl {
 
 void ContactNormals::compute_gradient(const Vec& q) {
+  if (!all_active_) throw std::invalid_argument("ContactNormals::compute_gradient: F_n is computed at some nodes only");
   if (q.size() != grid_.num_dofs()) {
     std::ostringstream msg;
     msg << "ContactNormals::compute_gradient: state has " << q.size() << " entries, expected " << grid_.num_dofs();

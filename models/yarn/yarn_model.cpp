@@ -52,8 +52,15 @@ YarnModel::YarnModel(const Scene& scene, const YarnRegion& region, std::vector<s
   const bool friction = on.friction && scene.sliding;
   const NormalForceStretch normal_force_stretch =
       scene.compat.normal_force_on_centre_lines ? NormalForceStretch::centre_lines : NormalForceStretch::crimped_copies;
-  if ((gong_shear || friction) && region_.yarn_cells() > 0)
+  if ((gong_shear || friction) && region_.yarn_cells() > 0) {
     normals_.emplace(grid_, warp_.ks, warp_.kb, weft_.ks, weft_.kb, scene.radius_m, normal_force_stretch);
+    if (!region_.everywhere()) {  // F_n where Gong's shear and friction read it: the region's crossings
+      std::vector<char> active(grid_.num_nodes());
+      for (int j = 0; j < grid_.nv(); ++j)
+        for (int i = 0; i < grid_.nu(); ++i) active[grid_.node(i, j)] = region_.holds(i, j);
+      normals_->set_active(std::move(active));
+    }
+  }
   if (on.inertia) add_inertia();
   if (on.stretch) add_stretch();
   if (on.gravity) add_gravity();

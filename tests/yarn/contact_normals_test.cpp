@@ -136,6 +136,37 @@ TEST(ContactNormals, PullingOneWarpRaisesItsCrossings) {
   EXPECT_NEAR(pulled.normal_force()[g.node(3, 1)], rest.normal_force()[g.node(3, 1)], 1e-15);
 }
 
+// A mixed cloth's F_n at its region's nodes only (set_active): at those nodes the same value as
+// computed over the whole grid, on a sheet that is curved, stretched and slid unevenly; 0 elsewhere.
+TEST(ContactNormals, ActiveNodesAloneGiveTheSameNormalForce) {
+  const WovenGrid g(plain_scene(11, 10));
+  ContactNormals all = make(g), some = make(g);
+  std::vector<char> active(g.num_nodes(), 0);
+  for (int j = 3; j <= 6; ++j)
+    for (int i = 4; i <= 8; ++i) active[g.node(i, j)] = 1;
+  some.set_active(active);
+  Vec q = state(g, [](int i, int j) {
+    return Vec3(i * kL * (1.02 + 0.003 * j), j * kL, 0.4 * kL * std::sin(0.7 * i + 0.3 * j * j));
+  });
+  for (int j = 1; j < g.nv() - 1; ++j)
+    for (int i = 1; i < g.nu() - 1; ++i)
+      if (is_dof(g.dofs(g.node(i, j)).u)) q[g.dofs(g.node(i, j)).u] += 0.02 * kL * std::cos(1.3 * i + j);
+  all.compute(q);
+  some.compute(q);
+  int pressed = 0;
+  for (int id = 0; id < g.num_nodes(); ++id) {
+    if (!active[id]) {
+      EXPECT_EQ(some.normal_force()[id], 0.0) << id;
+      continue;
+    }
+    EXPECT_EQ(some.normal_force()[id], all.normal_force()[id]) << id;
+    pressed += all.normal_force()[id] > 0.0;
+  }
+  EXPECT_GT(pressed, 10);
+  EXPECT_THROW(some.compute_gradient(q), std::invalid_argument);
+  EXPECT_THROW(some.set_active(std::vector<char>(3, 1)), std::invalid_argument);
+}
+
 TEST(ContactNormals, FlippingAllSignsLeavesNormalForceUnchanged) {
   // n = s_ij · n_plane, and n_plane follows the sheet's in-plane orientation
   // (+u × +v). Mirroring a flat sheet (x → −x) reverses n_plane, which negates

@@ -13,4 +13,11 @@ void LumpedMassTerm::evaluate(int e, const double*, const double*, const Element
   for (int k = 0; k < 3; ++k) m.diagonal().segment<3>(3 * k).setConstant(mass_[e][k]);
 }
 
+double LumpedMassTerm::kinetic_energy(int e, const double*, const double* v) const {
+  double t = 0.0;
+  for (int k = 0; k < 3; ++k)
+    t += mass_[e][k] * (v[3 * k] * v[3 * k] + v[3 * k + 1] * v[3 * k + 1] + v[3 * k + 2] * v[3 * k + 2]);
+  return 0.5 * t;
+}
+
 }  // namespace wl

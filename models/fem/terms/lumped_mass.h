@@ -19,6 +19,8 @@ class LumpedMassTerm : public ProportionalParameterTerm<9> {
   void add(const std::array<int, 9>& stencil, const std::array<double, 3>& vertex_mass_kg);
   double energy(int, const double*) const override { return 0.0; }
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
+  // ½ Σ_k m_k |v_k|² (closed form: run.cpp's metrics ask for it every step).
+  double kinetic_energy(int e, const double* q, const double* v) const override;
 
  private:
   std::vector<std::array<double, 3>> mass_;
