@@ -553,8 +553,30 @@ void read_compat(TableReader& top, Scene& s) {
   int diagonals = s.compat.wind_alternating_diagonals ? 1 : 0;
   if (c->read_choice("wind_diagonals", diagonals, {"one", "alternating"}))
     s.compat.wind_alternating_diagonals = diagonals == 1;
+  const auto choose = [&](const char* key, bool& flag, const std::vector<std::string>& values) {
+    int value = flag ? 1 : 0;
+    if (c->read_choice(key, value, values)) flag = value == 1;
+  };
+  choose("bending_sliding_force", s.compat.bending_sliding_theta, {"theta_squared", "theta"});
+  choose("parallel_contact_sign", s.compat.parallel_contact_attractive, {"repulsive", "attractive"});
+  choose("ring_over_under", s.compat.ring_unsigned, {"pattern", "none"});
+  choose("shear_lock_angle", s.compat.shear_lock_actual_angle, {"mirrored", "actual"});
+  choose("shear_lock_derivative", s.compat.shear_lock_published_derivative, {"exact", "published"});
+  choose("shear_quadrants", s.compat.shear_interior_only, {"every_node", "interior"});
+  choose("normal_force_bending_uv", s.compat.normal_force_bending_at_rest, {"current", "rest"});
   const toml::node* key = c->table().get("normal_force_stretch");
+  const toml::node* angle_key = c->table().get("shear_lock_angle");
+  const toml::node* rest_key = c->table().get("normal_force_bending_uv");
   c->finish();
+  const double exponent = s.contact.lock_exponent;  // γ < 0 beyond φ̄ at the actual angle: integer powers only
+  if (s.compat.shear_lock_actual_angle && !(exponent >= 2.0 && exponent == std::floor(exponent)))
+    top.source().fail(line_of(*angle_key), c->key_path("shear_lock_angle"), "\"actual\"",
+                      "\"mirrored\" while contact.lock_exponent = " + format_number(exponent) +
+                          " (the actual angle needs an integer exponent >= 2)");
+  if (s.compat.normal_force_bending_at_rest && s.exact_contact_jacobian)
+    top.source().fail(line_of(*rest_key), c->key_path("normal_force_bending_uv"), "\"rest\"",
+                      "\"current\" while time.exact_contact_jacobian = true (the exact derivatives of F_n "
+                      "exist for the current sliding coordinates only)");
   if (s.compat.normal_force_on_centre_lines && s.exact_contact_jacobian)
     top.source().fail(line_of(*key), c->key_path("normal_force_stretch"), "\"centre_line\"",
                       "\"crimped\" while time.exact_contact_jacobian = true (the exact derivatives of F_n "

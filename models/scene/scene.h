@@ -182,6 +182,20 @@ struct CompatSettings {
   // (i+1, j)–(i, j+1) when it is odd (docs/published_code.md row 13); false: every cell along
   // (i, j)–(i+1, j+1) (docs/models.md §3.9).
   bool wind_alternating_diagonals = false;
+  // F_u of bending k_b θ/U² instead of k_b θ²/U² (docs/published_code.md row 6).
+  bool bending_sliding_theta = false;
+  // Parallel contact F_u0 = +k_cL·ReLU(d − Δu), the negative of the penalty's gradient (row 12).
+  bool parallel_contact_attractive = false;
+  // Outer-ring crossings carry the over/under sign +1 whatever the pattern (row 22).
+  bool ring_unsigned = false;
+  // Gong's lock: γ and g at φ itself, not at the mirrored angle φ* (row 9).
+  bool shear_lock_actual_angle = false;
+  // Gong's lock: the published ∂k/∂x, with 1 − f²·g′ in place of (1 − f²)·g′ (row 8).
+  bool shear_lock_published_derivative = false;
+  // The bending part of F_n with the sliding coordinates at rest (docs/published_code.md row 24).
+  bool normal_force_bending_at_rest = false;
+  // Shear quadrants only around interior crossings, none centred on the outer ring (row 23).
+  bool shear_interior_only = false;
 };
 
 struct Scene {

@@ -35,14 +35,15 @@ double coordinate(const Vec& q, const Vec& constants, int index) {
 
 ContactNormals::ContactNormals(const WovenGrid& grid, std::vector<double> warp_ks, std::vector<double> warp_kb,
                                std::vector<double> weft_ks, std::vector<double> weft_kb, double radius,
-                               NormalForceStretch stretch)
+                               NormalForceStretch stretch, bool bending_at_rest)
     : grid_(grid),
       warp_ks_(std::move(warp_ks)),
       warp_kb_(std::move(warp_kb)),
       weft_ks_(std::move(weft_ks)),
       weft_kb_(std::move(weft_kb)),
       R_(radius),
-      stretch_(stretch) {
+      stretch_(stretch),
+      bending_at_rest_(bending_at_rest) {
   if (grid_.nu() < 2 || grid_.nv() < 2) {
     std::ostringstream msg;
     msg << "ContactNormals: grid of " << grid_.nu() << " x " << grid_.nv() << " nodes, expected at least 2 x 2";
@@ -145,6 +146,10 @@ void ContactNormals::compute(const Vec& q) {
       fv_[id].setZero();
     }
 
+  // The sliding coordinates the bending of the copies sees: the current ones, or those at rest.
+  const double L = grid_.spacing();
+  const auto bend_u = [&](int id) { return bending_at_rest_ ? (id % nu) * L : u_[id]; };
+  const auto bend_v = [&](int id) { return bending_at_rest_ ? (id / nu) * L : v_[id]; };
   // F^u: stretch and bending of every warp on its crimped copy (stretch on the centre line with
   // centre_lines), accumulated per node.
   const std::vector<Vec3>& warp_stretch_at = on_centre_lines ? x_ : xw_;
@@ -160,7 +165,7 @@ void ContactNormals::compute(const Vec& q) {
     for (int i = 1; i + 1 < nu; ++i) {
       const int c = grid_.node(i, j), nx = grid_.node(i + 1, j), pv = grid_.node(i - 1, j);
       if (!active_[c] && !active_[nx] && !active_[pv]) continue;
-      const auto f = BendingTerm::local_force(xw_[c], xw_[nx], xw_[pv], u_[nx], u_[pv], warp_kb_[j]);
+      const auto f = BendingTerm::local_force(xw_[c], xw_[nx], xw_[pv], bend_u(nx), bend_u(pv), warp_kb_[j]);
       fu_[c] += f.segment<3>(0);
       fu_[nx] += f.segment<3>(3);
       fu_[pv] += f.segment<3>(6);
@@ -178,7 +183,7 @@ void ContactNormals::compute(const Vec& q) {
     for (int j = 1; j + 1 < nv; ++j) {
       const int c = grid_.node(i, j), nx = grid_.node(i, j + 1), pv = grid_.node(i, j - 1);
       if (!active_[c] && !active_[nx] && !active_[pv]) continue;
-      const auto f = BendingTerm::local_force(xf_[c], xf_[nx], xf_[pv], v_[nx], v_[pv], weft_kb_[i]);
+      const auto f = BendingTerm::local_force(xf_[c], xf_[nx], xf_[pv], bend_v(nx), bend_v(pv), weft_kb_[i]);
       fv_[c] += f.segment<3>(0);
       fv_[nx] += f.segment<3>(3);
       fv_[pv] += f.segment<3>(6);

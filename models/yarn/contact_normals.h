@@ -42,7 +42,9 @@ class ContactNormals {
   // wrong sizes, negative/non-finite stiffness or non-positive radius.
   ContactNormals(const WovenGrid& grid, std::vector<double> warp_ks, std::vector<double> warp_kb,
                  std::vector<double> weft_ks, std::vector<double> weft_kb, double radius,
-                 NormalForceStretch stretch = NormalForceStretch::crimped_copies);
+                 NormalForceStretch stretch = NormalForceStretch::crimped_copies, bool bending_at_rest = false);
+  // bending_at_rest: the bending of the crimped copies with the sliding coordinates at rest (u = iL,
+  // v = jL), as the published code computes it (docs/published_code.md row 24).
 
   // q: the full state (size grid.num_dofs()); frozen u/v come from grid.constants().
   void compute(const Vec& q);
@@ -81,6 +83,7 @@ class ContactNormals {
   std::vector<double> warp_ks_, warp_kb_, weft_ks_, weft_kb_;
   double R_;
   NormalForceStretch stretch_;
+  bool bending_at_rest_;
   std::vector<Vec3> x_, n_, xw_, xf_, fu_, fv_;
   std::vector<double> u_, v_, fn_;
   // Per node: eigenvectors (columns, ascending eigenvalues) and eigenvalues of

@@ -31,6 +31,10 @@ void ContactNormals::compute_gradient(const Vec& q) {
     throw std::invalid_argument(
         "ContactNormals::compute_gradient: the exact derivatives of F_n exist for the stretch on the crimped "
         "copies only (compat.normal_force_stretch = \"crimped\")");
+  if (bending_at_rest_)
+    throw std::invalid_argument(
+        "ContactNormals::compute_gradient: the exact derivatives of F_n exist for the current sliding coordinates "
+        "only (compat.normal_force_bending_uv = \"current\")");
   const int nu = grid_.nu(), nv = grid_.nv(), N = grid_.num_nodes();
   grad_.resize(N);
   parts_.assign(N, StiffnessParts{});

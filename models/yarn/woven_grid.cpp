@@ -37,7 +37,9 @@ WovenGrid::WovenGrid(const Scene& scene, const YarnRegion& region)
         d.v = encode_constant(static_cast<int>(constants.size()));
         constants.push_back(j * L_);
       }
-      sign_[node(i, j)] = pattern_sign(scene.pattern, i, j);
+      // docs/models.md §2.3; the published code leaves the ring unsigned (docs/published_code.md row 22).
+      const bool ring = i == 0 || j == 0 || i == nu_ - 1 || j == nv_ - 1;
+      sign_[node(i, j)] = ring && scene.compat.ring_unsigned ? 1 : pattern_sign(scene.pattern, i, j);
     }
   constants_ = Eigen::Map<Vec>(constants.data(), static_cast<Eigen::Index>(constants.size()));
 }

@@ -53,7 +53,8 @@ YarnModel::YarnModel(const Scene& scene, const YarnRegion& region, std::vector<s
   const NormalForceStretch normal_force_stretch =
       scene.compat.normal_force_on_centre_lines ? NormalForceStretch::centre_lines : NormalForceStretch::crimped_copies;
   if ((gong_shear || friction) && region_.yarn_cells() > 0) {
-    normals_.emplace(grid_, warp_.ks, warp_.kb, weft_.ks, weft_.kb, scene.radius_m, normal_force_stretch);
+    normals_.emplace(grid_, warp_.ks, warp_.kb, weft_.ks, weft_.kb, scene.radius_m, normal_force_stretch,
+                     scene.compat.normal_force_bending_at_rest);
     if (!region_.everywhere()) {  // F_n where Gong's shear and friction read it: the region's crossings
       std::vector<char> active(grid_.num_nodes());
       for (int j = 0; j < grid_.nv(); ++j)
@@ -176,7 +177,7 @@ void YarnModel::add_gravity() {
 // Bending over three consecutive crossings of a yarn, docs/models.md §3.3.
 void YarnModel::add_bending() {
   const int nu = grid_.nu(), nv = grid_.nv();
-  auto t = std::make_unique<BendingTerm>();
+  auto t = std::make_unique<BendingTerm>(scene_.compat.bending_sliding_theta);
   auto add = [&](int n0, int n1, int n2, bool warp, double kb, const std::string& type) {
     const double share = region_.crossing_share(n0 % nu, n0 / nu);
     if (share == 0.0) return;
@@ -206,7 +207,9 @@ void YarnModel::add_shear() {
   std::unique_ptr<CirioShearTerm> cirio;
   std::unique_ptr<GongShearTerm> gong;
   if (c.shear_model == ContactParams::ShearModel::gong)
-    gong = std::make_unique<GongShearTerm>(L, scene_.radius_m, c.lock_exponent, c.lock_sigma);
+    gong = std::make_unique<GongShearTerm>(
+        L, scene_.radius_m, c.lock_exponent, c.lock_sigma,
+        GongShearTerm::Published{scene_.compat.shear_lock_actual_angle, scene_.compat.shear_lock_published_derivative});
   else cirio = std::make_unique<CirioShearTerm>();
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i)
@@ -214,6 +217,8 @@ void YarnModel::add_shear() {
         for (int dj : {1, -1}) {
           const int i1 = i + di, j3 = j + dj;
           if (i1 < 0 || i1 >= nu || j3 < 0 || j3 >= nv) continue;
+          const bool ring = i == 0 || j == 0 || i == nu - 1 || j == nv - 1;
+          if (ring && scene_.compat.shear_interior_only) continue;             // docs/published_code.md row 23
           if (!region_.yarn_cell(std::min(i, i1), std::min(j, j3))) continue;  // the quadrant's cell
           const int n0 = grid_.node(i, j);
           const int x0 = grid_.dofs(n0).x, x1 = grid_.dofs(grid_.node(i1, j)).x, x3 = grid_.dofs(grid_.node(i, j3)).x;
@@ -236,7 +241,8 @@ void YarnModel::add_shear() {
 void YarnModel::add_parallel_contact() {
   const int nu = grid_.nu();
   const double k = scene_.contact.parallel_stiffness_N_per_m2 * scene_.spacing_m;
-  auto t = std::make_unique<ParallelContactTerm>();
+  // The published code's force is the negative of the penalty's gradient (docs/published_code.md row 12).
+  auto t = std::make_unique<ParallelContactTerm>(scene_.compat.parallel_contact_attractive ? -1.0 : 1.0);
   for (const Segment& s : segments_) {
     const NodeDofs &da = grid_.dofs(s.a), &db = grid_.dofs(s.b);
     const int ca = s.warp ? da.u : da.v, cb = s.warp ? db.u : db.v;

@@ -152,6 +152,39 @@ TEST(CompatNormalForce, NodesNextToTheRingSeeItUncrimped) {
   EXPECT_GT(lab.normal_force()[g.node(1, j)], 2.0 * expected);  // the crimped stretch dominates
 }
 
+TEST(CompatNormalForce, BendingAtRestIgnoresTheSlidingCoordinates) {
+  // A flat sheet: on the centre lines the stretch has no normal part, so F_n is the bending of the
+  // crimped copies alone. Sliding some crossings changes the lab's bending (U = u1 − u2) but not the
+  // published one, which keeps U = 2L (docs/published_code.md row 24): it equals F_n at rest.
+  const WovenGrid g(plain_scene(9, 9));
+  const auto flat = [](int i, int j) { return Vec3(i * kL, j * kL, 0.0); };
+  Vec slid = state(g, flat);
+  for (int j = 2; j <= 6; ++j)
+    for (int i = 2; i <= 6; ++i) {
+      const NodeDofs& d = g.dofs(g.node(i, j));
+      slid[d.u] += 0.1 * kL * ((i * 3 + j) % 5 - 2);
+      slid[d.v] -= 0.07 * kL * ((i + 2 * j) % 3 - 1);
+    }
+  ContactNormals at_rest(g, std::vector<double>(g.nv(), kKsU), std::vector<double>(g.nv(), kKbU),
+                         std::vector<double>(g.nu(), kKsV), std::vector<double>(g.nu(), kKbV), kR,
+                         NormalForceStretch::centre_lines, true);
+  ContactNormals current = make(g, NormalForceStretch::centre_lines),
+                 reference = make(g, NormalForceStretch::centre_lines);
+  at_rest.compute(slid);
+  current.compute(slid);
+  reference.compute(state(g, flat));
+  int changed = 0;
+  for (int j = 1; j < 8; ++j)
+    for (int i = 1; i < 8; ++i) {
+      const int id = g.node(i, j);
+      EXPECT_NEAR(at_rest.normal_force()[id], reference.normal_force()[id], 1e-12 * reference.normal_force()[id]);
+      changed +=
+          std::abs(current.normal_force()[id] - reference.normal_force()[id]) > 1e-3 * reference.normal_force()[id];
+    }
+  EXPECT_GT(changed, 10);
+  EXPECT_THROW(at_rest.compute_gradient(slid), std::invalid_argument);
+}
+
 TEST(CompatNormalForce, ExactGradientIsRefused) {
   const WovenGrid g(plain_scene(5, 5));
   ContactNormals published = make(g, NormalForceStretch::centre_lines);
@@ -160,13 +193,20 @@ TEST(CompatNormalForce, ExactGradientIsRefused) {
   EXPECT_THROW(published.compute_gradient(q), std::invalid_argument);
 }
 
-// The shipped scene with both switches on, after 10 steps of its integrator (sheared, sliding,
+// The shipped scene with every switch on, after 10 steps of its integrator (sheared, sliding,
 // F_n > 0): the assembled Jacobians are the exact derivatives of the force with F_n and F_u frozen,
 // as for the lab's model (yarn_model_jacobian_test.cpp), block by block; and F_n is not the lab's.
 TEST(CompatModel, JacobiansMatchDifferencesOfTheFrozenForce) {
   Scene scene = load_scene(WEAVELAB_SOURCE_DIR "/experiments/scenes/hanging_wind.toml");
   scene.compat.normal_force_on_centre_lines = true;
   scene.compat.wind_alternating_diagonals = true;
+  scene.compat.bending_sliding_theta = true;
+  scene.compat.parallel_contact_attractive = true;
+  scene.compat.ring_unsigned = true;
+  scene.compat.shear_lock_actual_angle = true;
+  scene.compat.shear_lock_published_derivative = true;
+  scene.compat.shear_interior_only = true;
+  scene.compat.normal_force_bending_at_rest = true;
   YarnModel m(scene);
   BackwardEuler be(BackwardEuler::Variant::linear);
   IntegratorOptions opt;

@@ -2,7 +2,7 @@
 """Distance of lab runs from the authors' published code, as a fraction of the motion.
 
     compare_published.py --published DIR --run LABEL=RUN_DIR [--run ...] --reference LABEL \
-        --out CSV --plot PNG
+        [--compat-reference LABEL --corrections CSV --corrections-plot PNG] --out CSV --plot PNG
 
 DIR holds the driver's trajectory.csv (step, node (i, j), positions). Each RUN_DIR is a
 `weavelab run` folder of the same scene with a frame at every step (output_interval = dt),
@@ -15,6 +15,14 @@ max_k d(k), the fraction max d / max m (the figure the issue quotes), the same d
 the reference run (the lab's default) as a fraction of the motion, and the run's own estimated
 time error (summary.json: mean and worst over frames of the RMS, and the worst as a fraction of
 the motion). The plot shows d(k)/max m for every run with its time error.
+
+With --compat-reference (the run with every [compat] switch, the published model), each run's
+distance from it is a column too, and --corrections writes the worth of each correction: for every
+run labelled without_X (the published model with correction X alone), its displacement field
+D_X(k) = x_without_X(k) − x_compat(k) as max_k RMS / max m; then the sum Σ_X D_X against the
+displacement of all corrections together, D(k) = x_reference(k) − x_compat(k), and the RMS of
+their difference (the part of the total that the separate effects do not account for), each as a
+fraction of the motion beside the worst time error of the runs involved.
 Missing or malformed inputs: a message on stderr and exit 2.
 """
 import argparse
@@ -89,6 +97,8 @@ def plot(path, steps, dt, curves, motion):
     fig, ax = plt.subplots(figsize=(7, 4))
     t = np.asarray(steps) * dt * 1e3
     for label, d, err in curves:
+        if label.startswith("without_"):
+            continue  # in the corrections chart
         line, = ax.plot(t, d / motion, label=f"{label}: distance from the published code")
         if err is not None:
             ax.plot(t, err / motion, ls=":", color=line.get_color(), label=f"{label}: own time error")
@@ -96,6 +106,60 @@ def plot(path, steps, dt, curves, motion):
     ax.set_ylabel("RMS over nodes / largest RMS motion")
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
+    runs.save_figure(fig, path)
+
+
+def field(frames, base, steps):
+    """Displacement field frames(k) − base(k) over the steps, shape (steps, nodes, 3)."""
+    return np.array([frames[k] - base[k] for k in steps])
+
+
+def largest_rms(field_):
+    return float(np.sqrt(np.mean(np.sum(field_ ** 2, axis=2), axis=1)).max())
+
+
+def write_corrections(path, labs, steps, total_label, compat_label, motion, worst_error, plot_path=None):
+    """Worth of each correction and whether the separate effects add up to the total."""
+    compat = labs[compat_label][0]
+    corrections = [label for label in labs if label.startswith("without_")]
+    if not corrections:
+        runs.fail("--corrections: no run labelled without_*")
+    rows, total_sum = [], np.zeros((len(steps),) + compat[steps[0]].shape)
+    for label in corrections:
+        d = field(labs[label][0], compat, steps)
+        total_sum += d
+        rows.append({"correction": label[len("without_"):], "fraction_of_motion": largest_rms(d) / motion,
+                     "worst_time_error_fraction": max(worst_error[label], worst_error[compat_label])})
+    total = field(labs[total_label][0], compat, steps)
+    involved = max(worst_error[label] for label in corrections + [compat_label, total_label])
+    rows.append({"correction": "sum of the separate effects", "fraction_of_motion": largest_rms(total_sum) / motion,
+                 "worst_time_error_fraction": involved})
+    rows.append({"correction": f"all together ({total_label})", "fraction_of_motion": largest_rms(total) / motion,
+                 "worst_time_error_fraction": max(worst_error[total_label], worst_error[compat_label])})
+    rows.append({"correction": "sum minus all together", "fraction_of_motion": largest_rms(total_sum - total) / motion,
+                 "worst_time_error_fraction": involved})
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    if plot_path:
+        plot_corrections(plot_path, rows)
+
+
+def plot_corrections(path, rows):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 0.35 * len(rows) + 1.2))
+    y = np.arange(len(rows))
+    ax.barh(y, [r["fraction_of_motion"] for r in rows], color="tab:blue", label="effect")
+    ax.plot([r["worst_time_error_fraction"] for r in rows], y, "k|", markersize=12, label="worst time error")
+    ax.set_yticks(y, [r["correction"] for r in rows], fontsize=7)
+    ax.invert_yaxis()
+    ax.set_xscale("log")
+    ax.set_xlabel("largest RMS displacement from the published model / largest RMS motion")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3, axis="x")
     runs.save_figure(fig, path)
 
 
@@ -107,6 +171,9 @@ def main():
     parser.add_argument("--dt", type=float, default=1e-3)
     parser.add_argument("--out", required=True)
     parser.add_argument("--plot")
+    parser.add_argument("--compat-reference")
+    parser.add_argument("--corrections")
+    parser.add_argument("--corrections-plot")
     args = parser.parse_args()
     published, _ = read_published(args.published)
     labelled = parse_runs(args.run)
@@ -121,7 +188,12 @@ def main():
     if motion <= 0.0:
         runs.fail("the published cloth does not move: nothing to compare")
     reference = labs[args.reference][0]
-    rows, curves = [], []
+    if args.compat_reference and args.compat_reference not in labs:
+        runs.fail(f"--compat-reference {args.compat_reference}: not among the --run labels")
+    if args.corrections and not args.compat_reference:
+        runs.fail("--corrections needs --compat-reference")
+    compat = labs[args.compat_reference][0] if args.compat_reference else None
+    rows, curves, worst_error = [], [], {}
     for label, _ in labelled:
         frames, summary = labs[label]
         d = distances(frames, published, steps)
@@ -136,17 +208,23 @@ def main():
             "max_rms_distance_to_published_m": float(d.max()),
             "fraction_of_motion": float(d.max()) / motion,
             "fraction_of_motion_from_lab_default": float(d_ref.max()) / motion,
+            **({"fraction_of_motion_from_published_compat": float(distances(frames, compat, steps).max()) / motion}
+               if compat is not None else {}),
             "time_error_mean_rms_m": te.get("mean_rms_m", ""),
             "time_error_worst_rms_fraction": float(err.max()) / motion if err is not None else "",
             "largest_rms_motion_m": motion,
         })
         curves.append((label, d, err))
+        worst_error[label] = float(err.max()) / motion if err is not None else float("nan")
     with open(args.out, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(rows[0]))
         writer.writeheader()
         writer.writerows(rows)
     if args.plot:
         plot(args.plot, steps, args.dt, curves, motion)
+    if args.corrections:
+        write_corrections(args.corrections, labs, steps, args.reference, args.compat_reference, motion, worst_error,
+                          args.corrections_plot)
     print(json.dumps(rows, indent=1))
 
 

@@ -12,7 +12,8 @@ over the sliding rows (u, v), with both norms. The published inertia is the sum 
 (∂T/∂q and −Ṁq̇), which the lab computes as one term. `total` is every term on (the scene as it is):
 it includes friction, whose anchors the lab holds at rest, so it is comparable at step 0 only.
 A variant (NAME=LINE;LINE) adds a [compat] table of those lines (docs/published_code.md) and is
-compared term by term as well.
+compared term by term as well. Row `normal_force` compares the contact normal force F_n of the
+interior crossings (the frame's F_n, every term on) in the x columns.
 Missing or malformed inputs: a message on stderr and exit 2.
 """
 import argparse
@@ -105,6 +106,22 @@ def lab_force(weavelab, base, compat_lines, switches, q, v, t):
     return np.asarray(model.evaluate(q, v, t, jacobians=False, mass=False)["force"])
 
 
+def lab_normal_force(weavelab, base, compat_lines, q, v, t, nu, nv):
+    """F_n of the interior crossings (i + nu·j order, the ring left out) with every term on."""
+    scene = base.copy()
+    for line in compat_lines:
+        key, _, value = line.partition("=")
+        scene[f"compat.{key.strip()}"] = value.strip().strip('"')
+    fn = np.asarray(weavelab.Model(scene, "yarn").frame(q, v, t)["F_n"]).reshape(-1)
+    return np.array([fn[i + nu * j] for j in range(1, nv - 1) for i in range(1, nu - 1)])
+
+
+def published_normal_force(force_rows, step, nu, nv):
+    fn = {(int(r["i"]), int(r["j"])): float(r["fx"]) for r in force_rows
+          if int(r["step"]) == step and r["term"] == "normal_force"}
+    return np.array([fn[(i, j)] for j in range(1, nv - 1) for i in range(1, nu - 1)])
+
+
 def relative(a, b, rows):
     ref = np.linalg.norm(b[rows])
     return (np.linalg.norm(a[rows] - b[rows]) / ref if ref > 0 else float("nan")), ref
@@ -147,6 +164,14 @@ def main():
                 ru, nuv = relative(f_lab, f_pub, sliding)
                 out.append({"step": step, "term": term, "variant": variant, "relative_difference_x": rx,
                             "relative_difference_uv": ru, "published_norm_x": nx, "published_norm_uv": nuv})
+        # The contact normal force F_n of the interior crossings (docs/published_code.md rows 1-2), in the x columns.
+        fn_pub = published_normal_force(forces, step, nu, nv)
+        for variant, lines in variants:
+            fn_lab = lab_normal_force(weavelab, base, lines, q, v, step * args.dt, nu, nv)
+            ref = np.linalg.norm(fn_pub)
+            out.append({"step": step, "term": "normal_force", "variant": variant,
+                        "relative_difference_x": np.linalg.norm(fn_lab - fn_pub) / ref if ref > 0 else float("nan"),
+                        "relative_difference_uv": float("nan"), "published_norm_x": ref, "published_norm_uv": 0.0})
     with open(args.out, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=list(out[0]))
         writer.writeheader()

@@ -159,8 +159,34 @@ BendingTerm::Local BendingTerm::local_force(const Vec3& x0, const Vec3& x1, cons
 
 double BendingTerm::energy(int e, const double* q) const { return local_energy(q, kb_[e]); }
 
+// The published sliding force F_u1 = −F_u2 = k_b θ/U² (docs/published_code.md row 6) replaces rows
+// u1, u2: with ∇θ = −∇c/sin θ (zero at θ = 0, where θ has no derivative),
+//   ∂F_u1/∂x = (k_b/U²)∇θ,  ∂F_u1/∂u1 = −∂F_u1/∂u2 = −2k_b θ/U³,  F_u2 = −F_u1.
 void BendingTerm::evaluate(int e, const double* q, const double*, const ElementOutput& out) const {
   local_evaluate(q, kb_[e], out.force, out.dfdq);
+  if (!sliding_theta_) return;
+  const Geometry g = geometry(q);
+  const double U = q[9] - q[10], kb = kb_[e];
+  const double fu1 = kb * g.theta / (U * U);
+  out.force[9] = fu1;
+  out.force[10] = -fu1;
+  if (!out.dfdq) return;
+  const double sin_theta = g.cross.norm();
+  Eigen::Matrix<double, 9, 1> grad_theta = Eigen::Matrix<double, 9, 1>::Zero();
+  if (sin_theta > 0.0) {
+    const Vec3 gc1 = g.cross.cross(g.e1) / g.l1, gc2 = -g.e2.cross(g.cross) / g.l2;  // ∇c over x1, x2
+    grad_theta.segment<3>(3) = -gc1 / sin_theta;
+    grad_theta.segment<3>(6) = -gc2 / sin_theta;
+    grad_theta.head<3>() = -(grad_theta.segment<3>(3) + grad_theta.segment<3>(6));
+  }
+  Eigen::Map<LocalMatrix> K(out.dfdq);
+  const double r = kb / (U * U), kuu = -2.0 * kb * g.theta / (U * U * U);
+  K.block<1, 9>(9, 0) = r * grad_theta.transpose();
+  K.block<1, 9>(10, 0) = -r * grad_theta.transpose();
+  K(9, 9) = kuu;
+  K(10, 10) = kuu;
+  K(9, 10) = -kuu;
+  K(10, 9) = -kuu;
 }
 
 }  // namespace wl

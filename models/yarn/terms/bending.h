@@ -25,12 +25,18 @@ class BendingTerm : public ProportionalParameterTerm<11> {
   using Local = Eigen::Matrix<double, 11, 1>;
   using LocalMatrix = Eigen::Matrix<double, 11, 11>;
 
+  // sliding_theta: F_u1 = −F_u2 = k_b θ/U², as the published code computes it (docs/published_code.md
+  // row 6), instead of the energy's k_b θ²/U²; the forces on x stay the energy's. That force has no
+  // potential (conservative() = false); its Jacobian is its exact derivative.
+  explicit BendingTerm(bool sliding_theta = false) : sliding_theta_(sliding_theta) {}
+
   // kb = B·πR²; must be finite and ≥ 0.
   void add(const std::array<int, 11>& stencil, double kb);
   double stiffness(int e) const { return kb_[e]; }
 
   std::string name() const override { return "bending"; }
   std::unique_ptr<Term> clone() const override { return std::make_unique<BendingTerm>(*this); }
+  bool conservative() const override { return !sliding_theta_; }
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
@@ -44,6 +50,7 @@ class BendingTerm : public ProportionalParameterTerm<11> {
   static double angle(const Vec3& x0, const Vec3& x1, const Vec3& x2);
 
  private:
+  bool sliding_theta_;
   std::vector<double> kb_;
 };
 

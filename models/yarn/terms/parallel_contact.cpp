@@ -21,7 +21,7 @@ void ParallelContactTerm::add(const std::array<int, 2>& stencil, double kc_L, do
 // V = ½ k_c L ReLU(d − Δu)², docs/models.md §3.5
 double ParallelContactTerm::energy(int e, const double* q) const {
   const double gap = d_[e] - (q[1] - q[0]);
-  return gap > 0.0 ? 0.5 * kc_L_[e] * gap * gap : 0.0;
+  return gap > 0.0 ? 0.5 * sign_ * kc_L_[e] * gap * gap : 0.0;
 }
 
 // F_u0 = −F_u1 = k_c L (Δu − d) when active; ∂F_u0/∂u0 = ∂F_u1/∂u1 = −k_c L,
@@ -29,7 +29,7 @@ double ParallelContactTerm::energy(int e, const double* q) const {
 void ParallelContactTerm::evaluate(int e, const double* q, const double*, const ElementOutput& out) const {
   const double gap = d_[e] - (q[1] - q[0]);
   if (gap <= 0.0) return;  // inactive: outputs stay zero
-  const double k = kc_L_[e];
+  const double k = sign_ * kc_L_[e];
   out.force[0] = -k * gap;
   out.force[1] = k * gap;
   if (out.dfdq) {

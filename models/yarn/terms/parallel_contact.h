@@ -13,6 +13,9 @@ namespace wl {
 
 class ParallelContactTerm : public StencilTerm<2> {
  public:
+  // sign +1: the penalty above; −1: its negative, V = −½ k_c L ReLU(d − Δu)², whose force pulls the
+  // two crossings together as the published code's does (docs/published_code.md row 12).
+  explicit ParallelContactTerm(double sign = 1.0) : sign_(sign) {}
   // One segment; kc_L = k_c·L in N (≥ 0), d the contact distance in m (> 0).
   void add(const std::array<int, 2>& stencil, double kc_L, double d);
 
@@ -22,6 +25,7 @@ class ParallelContactTerm : public StencilTerm<2> {
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
 
  private:
+  double sign_;
   std::vector<double> kc_L_, d_;
 };
 

@@ -19,13 +19,16 @@ double safe_pow(double gamma, double e) { return gamma > 0.0 ? std::pow(gamma, e
 
 }  // namespace
 
-GongShearTerm::GongShearTerm(double L, double R, double c, double sigma) : L_(L), R_(R), c_(c), sigma_(sigma) {
+GongShearTerm::GongShearTerm(double L, double R, double c, double sigma, Published published)
+    : L_(L), R_(R), c_(c), sigma_(sigma), published_(published) {
   std::ostringstream bad;
   if (!(L > 0.0)) bad << "L = " << L << " (expected > 0)";
   else if (!(R > 0.0 && R * std::sqrt(2.0) < L))  // φ_l = 2 arcsin(R/L) < π/2
     bad << "R = " << R << " (expected 0 < R < L/√2 = " << L / std::sqrt(2.0) << ", lock angle below π/2)";
   else if (!(c > 0.0)) bad << "c = " << c << " (expected > 0)";
   else if (!(sigma > 0.0)) bad << "sigma = " << sigma << " (expected > 0)";
+  else if (published.actual_angle && !(c >= 2.0 && c == std::floor(c)))  // γ < 0 beyond φ̄: integer powers only
+    bad << "c = " << c << " (expected an integer >= 2 with the lock at the actual angle)";
   if (!bad.str().empty()) throw std::invalid_argument("GongShearTerm: " + bad.str());
   phi_l_ = 2.0 * std::asin(R / L);
 }
@@ -56,11 +59,16 @@ GongShearTerm::Stiffness GongShearTerm::stiffness(int e, double phi) const {
     return s;
   }
   const double C = 0.5 * (Fn + 1.0) * S_pi_R2_[e];
-  const double ps = kRest - std::abs(phi - kRest);
-  const double dps = phi <= kRest ? 1.0 : -1.0;
+  const bool actual = published_.actual_angle;  // docs/published_code.md row 9
+  const double ps = actual ? phi : kRest - std::abs(phi - kRest);
+  const double dps = actual || phi <= kRest ? 1.0 : -1.0;
   const double L = L_, R = R_, c = c_, pb = kRest, pl = phi_l_;
 
-  const double gamma = std::max(0.0, (std::sqrt(2.0) * L - 2.0 * L * std::sin(ps / 2)) / R);
+  const double gamma_raw = (std::sqrt(2.0) * L - 2.0 * L * std::sin(ps / 2)) / R;
+  const double gamma = actual ? gamma_raw : std::max(0.0, gamma_raw);
+  const auto power = [actual](double base, double exponent) {
+    return actual ? std::pow(base, exponent) : safe_pow(base, exponent);
+  };
   const double dgamma = -L / R * std::cos(ps / 2);
   const double d2gamma = L / (2.0 * R) * std::sin(ps / 2);
 
@@ -79,7 +87,7 @@ GongShearTerm::Stiffness GongShearTerm::stiffness(int e, double phi) const {
   const double df = (1.0 - f * f) * dg;
   const double d2f = (1.0 - f * f) * (d2g - 2.0 * f * dg * dg);
 
-  const double gc = safe_pow(gamma, c), gc1 = safe_pow(gamma, c - 1.0), gc2 = safe_pow(gamma, c - 2.0);
+  const double gc = power(gamma, c), gc1 = power(gamma, c - 1.0), gc2 = power(gamma, c - 2.0);
   const double K = C * ((1.0 + gc) + (1.0 - gc) * f);
   const double dK = C * (c * gc1 * dgamma * (1.0 - f) + (1.0 - gc) * df);
   const double d2K = C * (c * (c - 1.0) * gc2 * dgamma * dgamma * (1.0 - f) + c * gc1 * d2gamma * (1.0 - f) -
@@ -87,6 +95,10 @@ GongShearTerm::Stiffness GongShearTerm::stiffness(int e, double phi) const {
   s.k = K;
   s.dk = dK * dps;
   s.d2k = d2K;
+  s.lock = C * (1.0 - gc);
+  s.dlock = -C * c * gc1 * dgamma * dps;
+  s.dg = dg * dps;
+  s.d2g = d2g;
   return s;
 }
 
@@ -108,6 +120,27 @@ void GongShearTerm::evaluate(int e, const double* q, const double*, const Elemen
   const double dV = 0.5 * s.dk * L_ * d * d + s.k * L_ * d;
   const double d2V = 0.5 * s.d2k * L_ * d * d + 2.0 * s.dk * L_ * d + s.k * L_;
   a.write(dV, d2V, out);
+  if (published_.chain_slip && lock_[e]) add_chain_slip(s, a, out);
+}
+
+// ΔF_xi = h·1 − m ∇_iφ (i = 1, 3; m = h g′), ΔF_x0 = −(ΔF_x1 + ΔF_x3), h = −½ L a² C(1 − γ^c), so
+//   ∂ΔF_xi/∂x_j = 1 h′ ∇_jφᵀ − m′ ∇_iφ ∇_jφᵀ − m H_ij,  h′ = −L a C(1 − γ^c) − ½ L a² (C(1 − γ^c))′,
+//   m′ = h′ g′ + h g″   (docs/published_code.md row 8).
+void GongShearTerm::add_chain_slip(const Stiffness& s, const CrossingAngle& a, const ElementOutput& out) const {
+  using Vec9 = CrossingAngle::Vec9;
+  using Mat9 = CrossingAngle::Mat9;
+  const double d = a.phi - kRest;
+  const double h = -0.5 * L_ * d * d * s.lock;
+  const double dh = -L_ * d * s.lock - 0.5 * L_ * d * d * s.dlock;
+  const double m = h * s.dg, dm = dh * s.dg + h * s.d2g;
+  // 1 on the rows of x1 and x3, −2 on those of x0 (translation invariance).
+  Vec9 ones;
+  ones << -2.0, -2.0, -2.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0;
+  Eigen::Map<Vec9> f(out.force);
+  f += h * ones - m * a.grad;
+  if (!out.dfdq) return;
+  Eigen::Map<Mat9> K(out.dfdq);
+  K += dh * ones * a.grad.transpose() - dm * a.grad * a.grad.transpose() - m * a.hessian();
 }
 
 void GongShearTerm::frozen_input_derivatives(int e, const double* q, const double* v, double* dfdFn, double*) const {

@@ -24,11 +24,21 @@
 
 namespace wl {
 
+struct CrossingAngle;
+
 class GongShearTerm : public ProportionalParameterTerm<9>, public FrozenInputReader {
  public:
   // L segment rest length (m), R yarn radius (m), c lock exponent (paper: 3),
   // sigma lock sharpness (paper: 0.6; smaller = sharper, docs/models.md §4.11).
-  GongShearTerm(double L, double R, double c, double sigma);
+  // The published code's lock (docs/published_code.md): actual_angle evaluates γ and g at φ itself
+  // (row 9); chain_slip writes ∂k/∂x with 1 − f²·g′∇φ in place of (1 − f²)g′∇φ (row 8), which adds
+  //   ΔF_xi = h·(1, 1, 1)ᵀ − h g′ ∇_iφ  (i = 1, 3),  ΔF_x0 = −(ΔF_x1 + ΔF_x3),  h = −½ L a² C (1 − γ^c)
+  // to the forces (C = ½(F_n+1)SπR², a = φ − φ̄): a force with no potential (conservative() = false).
+  struct Published {
+    bool actual_angle;
+    bool chain_slip;
+  };
+  GongShearTerm(double L, double R, double c, double sigma, Published published = {false, false});
   std::unique_ptr<Term> clone() const override { return std::make_unique<GongShearTerm>(*this); }
 
   // node: id of the crossing x0 in the normal-force table. S_pi_R2 = SπR² (N) for
@@ -36,6 +46,7 @@ class GongShearTerm : public ProportionalParameterTerm<9>, public FrozenInputRea
   void add(const std::array<int, 9>& stencil, int node, double S_pi_R2, bool lock);
 
   std::string name() const override { return "shear"; }
+  bool conservative() const override { return !published_.chain_slip; }
   void prepare(const EvalContext& ctx) override;
   double energy(int e, const double* q) const override;
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
@@ -43,6 +54,8 @@ class GongShearTerm : public ProportionalParameterTerm<9>, public FrozenInputRea
   // k_sh of element e at angle φ with the current F_n, and its φ-derivatives.
   struct Stiffness {
     double k = 0.0, dk = 0.0, d2k = 0.0;
+    // Lock elements: C(1 − γ^c) and g with their φ-derivatives (for the published ∂k/∂x).
+    double lock = 0.0, dlock = 0.0, dg = 0.0, d2g = 0.0;
   };
   Stiffness stiffness(int e, double phi) const;
   // k_sh ∝ (F_n + 1) in both laws, so ∂f/∂F_n = f/(F_n + 1) (docs/models.md §3.6.1).
@@ -51,7 +64,11 @@ class GongShearTerm : public ProportionalParameterTerm<9>, public FrozenInputRea
   double lock_angle() const { return phi_l_; }  // φ_l = 2 arcsin(R/L)
 
  private:
+  // Adds the published chain slip's ΔF (see the constructor) and its exact Jacobian.
+  void add_chain_slip(const Stiffness& s, const CrossingAngle& a, const ElementOutput& out) const;
+
   double L_, R_, c_, sigma_, phi_l_;
+  Published published_;
   std::vector<int> node_;
   std::vector<double> S_pi_R2_;
   std::vector<char> lock_;
