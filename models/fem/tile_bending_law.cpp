@@ -39,12 +39,12 @@ TileBendingLaw::TileBendingLaw(const TileLawFile& law) : energy_scale_(law.energ
     if (m.num_active != 1 || t.exponent[m.active[0]] != 2) continue;
     rest_curvature_[m.active[0]] = 2.0 * t.coefficient;
     if (t.coefficient < 0)
-      throw FemParameterError(law.source + ":" + std::to_string(t.line) + ": the bending stiffness at rest along " +
-                              kTileLawStrainNames[m.active[0]] + " " +
-                              std::to_string(rest_curvature_[m.active[0]] * energy_scale_ /
-                                             (scale_[m.active[0]] * scale_[m.active[0]])) +
-                              " N·m, expected ≥ 0 (the law's continuation beyond the sampled box, "
-                              "docs/models.md §6.9)");
+      throw FemParameterError(
+          law.source + ":" + std::to_string(t.line) + ": the bending stiffness at rest along " +
+          kTileLawStrainNames[m.active[0]] + " " +
+          std::to_string(rest_curvature_[m.active[0]] * energy_scale_ / (scale_[m.active[0]] * scale_[m.active[0]])) +
+          " N·m, expected ≥ 0 (the law's continuation beyond the sampled box, "
+          "docs/models.md §6.9)");
   }
 }
 

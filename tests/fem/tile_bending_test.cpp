@@ -51,7 +51,8 @@ struct Folder {
 };
 
 // A 5 × 5 crossing cloth (L = 1 mm) whose continuum runs the law `law` ([fem] tile_law).
-const std::string kCloth = "[cloth]\nwarps = 5\nwefts = 5\nspacing_m = 0.001\n[gravity]\nacceleration_m_per_s2 = [0, 0, 0]\n";
+const std::string kCloth =
+    "[cloth]\nwarps = 5\nwefts = 5\nspacing_m = 0.001\n[gravity]\nacceleration_m_per_s2 = [0, 0, 0]\n";
 
 Scene scene_with_law(const Folder& f, const std::string& law_text, const std::string& fem_extra = "") {
   f.write("law.csv", law_text);
@@ -194,8 +195,9 @@ TEST(TileBending, EnergyInsideAndBeyondTheBox) {
   // A cylinder about v on the warp-only law W_b = W₀(0.1 t² + 0.02 t⁴), t = κ_u/10, per interior triangle
   // of rest area ½ mm²; the map's stretch ½κ²x² (≤ 10⁻⁴) only enters through the couplings, absent here.
   Folder f;
-  const FemModel m(scene_with_law(f, kHeader + kMembrane + "curvature_warp^2,0.1\ncurvature_weft^2,0.08\n"
-                                                           "curvature_warp^4,0.02\n"));
+  const FemModel m(scene_with_law(f, kHeader + kMembrane +
+                                         "curvature_warp^2,0.1\ncurvature_weft^2,0.08\n"
+                                         "curvature_warp^4,0.02\n"));
   const Term& t = term_named(m, "fem-tile-bending");
   const int e = central(m, t);
   auto energy = [&](double kappa) { return t.energy(e, local(m, t, e, placed(m, {0, 0, 0, kappa, 0, 0})).q.data()); };

@@ -8,9 +8,9 @@ namespace wl {
 using Mat18 = Eigen::Matrix<double, 18, 18>;
 
 struct TileBendingTerm::Strains {
-  std::array<double, 6> theta{};                 // ε_u, ε_v, γ, κ_u, κ_v, κ_uv
-  Eigen::Matrix<double, 18, 6> grad;             // ∇θ6_j, column j
-  std::array<Mat18, 6> hess;                     // ∇²θ6_j (when asked)
+  std::array<double, 6> theta{};      // ε_u, ε_v, γ, κ_u, κ_v, κ_uv
+  Eigen::Matrix<double, 18, 6> grad;  // ∇θ6_j, column j
+  std::array<Mat18, 6> hess;          // ∇²θ6_j (when asked)
 };
 
 TileBendingTerm::TileBendingTerm(std::shared_ptr<const TileBendingLaw> law) : law_(std::move(law)) {}
