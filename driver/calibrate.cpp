@@ -1,7 +1,6 @@
 #include "driver/calibrate.h"
 
 #include "driver/time_error.h"
-#include "models/fem/tile_law_file.h"
 
 #include <algorithm>
 #include <chrono>
@@ -21,6 +20,7 @@
 #include "driver/recorded_run.h"
 #include "driver/run_settings.h"
 #include "models/fem/fem_model.h"
+#include "models/fem/tile_law_file.h"
 #include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/csv_table.h"
@@ -93,6 +93,7 @@ VariantRun run_continuum_variant(const std::string& name, const Scene& scene, co
 }  // namespace
 
 Scene with_material(Scene s, const FemMaterial& m, bool border_strip) {
+  s.fem.tile_law = tile_law_path(s.fem);  // the law stays: m holds its parameters, not its terms
   s.fem.parameter_file.clear();
   s.fem.border_strip = border_strip;
   s.fem.areal_density_kg_per_m2 = m.areal_density_kg_per_m2;

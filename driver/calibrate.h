@@ -71,7 +71,8 @@ CalibrateSummary run_calibration(const CalibrateConfig& config, const CalibrateP
 double matched_areal_density(const Scene& scene);
 
 // The scene with every [fem] material value and the shear law set from `m` (no
-// parameter file) and [fem] border_strip set to `border_strip`.
+// parameter file; a tile law, as [fem] tile_law or as the parameter file, stays as
+// [fem] tile_law) and [fem] border_strip set to `border_strip`.
 Scene with_material(Scene s, const FemMaterial& m, bool border_strip);
 
 }  // namespace wl

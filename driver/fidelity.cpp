@@ -13,6 +13,7 @@
 #include "driver/time_error.h"
 #include "models/fem/fem_model.h"
 #include "models/fem/knit_contact_mesh.h"
+#include "models/fem/tile_law_file.h"
 #include "output/atomic_file.h"
 #include "output/csv_table.h"
 #include "output/json_writer.h"
@@ -220,19 +221,23 @@ FidelityPlan plan_fidelity(const FidelityConfig& c) {
   if (c.repeats < 1) throw std::invalid_argument("--repeats: got " + std::to_string(c.repeats) + ", expected ≥ 1");
 
   std::optional<FemMaterial> calibrated;
+  Scene continuum_base = s;  // the scene the continuum variants start from
   if (c.fem_params) {
     Scene with_file = s;
     with_file.fem.parameter_file = c.fem_params->string();
     calibrated = fem_material(with_file);  // a bad file: FemParameterError
     p.calibration = "--fem-params " + c.fem_params->string();
-  } else if (!s.fem.parameter_file.empty()) {
+    // A tile law is the continuum's law, not only its parameters: the variants run it (docs/models.md §6.9).
+    if (is_tile_law_file(c.fem_params->string())) continuum_base.fem.tile_law = c.fem_params->string();
+  } else if (!s.fem.parameter_file.empty() || !s.fem.tile_law.empty()) {
     calibrated = fem_material(s);
-    p.calibration = "the scene's [fem] parameter_file " + s.fem.parameter_file;
+    p.calibration = !s.fem.parameter_file.empty() ? "the scene's [fem] parameter_file " + s.fem.parameter_file
+                                                  : "the scene's [fem] tile_law " + s.fem.tile_law;
   }
 
   auto scene_of = [&](const std::string& option, const std::string& name) {
     try {
-      VariantScene v = variant_scene(s, name, calibrated);
+      VariantScene v = variant_scene(continuum_base, name, calibrated);
       if (!v.time_rung) v.scene = at_time_steps(v.scene, c.time_steps);
       if (name == "scene_step" && c.time_steps.scene) v.same_as_full = "the comparison runs at the scene's step";
       return v;

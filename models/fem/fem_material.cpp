@@ -192,13 +192,16 @@ FemMaterial fem_material(const Scene& s) {
   const FemSettings& f = s.fem;
   if (s.knit)  // nothing derives a knit's membrane stiffnesses from its yarn (docs/models.md §11.9)
     for (const CalibratedKey& k : kKnitCalibratedKeys) m.*k.field = 0.0;
-  m.shear_knots_rad = f.shear_knots_rad;     // the law first: the parameter file's knot values must fit it
-  if (is_tile_law_file(f.parameter_file)) {  // the tile law's bending at rest, the yarn level's mass (§6.9)
-    const TileLawFile law = read_tile_law_file(f.parameter_file);
+  m.shear_knots_rad = f.shear_knots_rad;  // the law first: the parameter file's knot values must fit it
+  if (const std::string law_path = tile_law_path(f); !law_path.empty()) {
+    // The tile law's bending at rest, the yarn level's mass (docs/models.md §6.9).
+    const TileLawFile law = read_tile_law_file(law_path);
     m.warp_bending_N_m = law.warp_bending_N_m();
     m.weft_bending_N_m = law.weft_bending_N_m();
     if (!s.knit) m.areal_density_kg_per_m2 = yarn_matched_areal_density(s);
-  } else if (!f.parameter_file.empty()) m = read_fem_parameter_file(f.parameter_file, m);
+  }
+  if (!f.parameter_file.empty() && !is_tile_law_file(f.parameter_file))
+    m = read_fem_parameter_file(f.parameter_file, m);
   auto set = [](double& out, const std::optional<double>& v) {
     if (v) out = *v;
   };

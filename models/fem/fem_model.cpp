@@ -17,6 +17,7 @@
 #include "models/fem/terms/in_plane_shear.h"
 #include "models/fem/terms/lumped_mass.h"
 #include "models/fem/terms/nodal_gravity.h"
+#include "models/fem/terms/tile_bending.h"
 #include "models/fem/terms/tile_membrane.h"
 #include "models/fem/terms/warp_weft_stretch.h"
 #include "models/fem/tile_law_file.h"
@@ -36,6 +37,29 @@ void add_tile_membrane(std::vector<std::unique_ptr<Term>>& terms, TileMembraneLa
                        const std::vector<TriangleRest>& rest) {
   auto t = std::make_unique<TileMembraneTerm>(std::make_shared<const TileMembraneLaw>(std::move(law)));
   for (int e = 0; e < mesh.num_triangles(); ++e) t->add(triangle_stencil(mesh.triangles[e]), rest[e]);
+  terms.push_back(std::move(t));
+}
+
+// The tile law's curvature part on every triangle, instead of the hinges or grid lines
+// (docs/models.md §6.9.1): each triangle with the apexes across its three edges.
+void add_tile_bending(std::vector<std::unique_ptr<Term>>& terms, TileBendingLaw law, const FemMesh& mesh,
+                      const std::vector<Hinge>& hinges) {
+  std::vector<std::array<int, 3>> apex(mesh.num_triangles(), {-1, -1, -1});
+  auto edge_of = [&](int t, int from) {  // edge k of triangle t runs from its vertex k
+    for (int k = 0; k < 3; ++k)
+      if (mesh.triangles[t][k] == from) return k;
+    return -1;
+  };
+  for (const Hinge& h : hinges) {
+    apex[h.tri0][edge_of(h.tri0, h.v[0])] = h.v[3];  // tri0 holds v0→v1, the other apex across
+    apex[h.tri1][edge_of(h.tri1, h.v[1])] = h.v[2];  // tri1 holds v1→v0
+  }
+  auto t = std::make_unique<TileBendingTerm>(std::make_shared<const TileBendingLaw>(std::move(law)));
+  for (int e = 0; e < mesh.num_triangles(); ++e) {
+    const auto& tri = mesh.triangles[e];
+    t->add({tri[0], tri[1], tri[2], apex[e][0], apex[e][1], apex[e][2]},
+           {mesh.uv[tri[0]], mesh.uv[tri[1]], mesh.uv[tri[2]]});
+  }
   terms.push_back(std::move(t));
 }
 
@@ -123,15 +147,18 @@ void FemModel::build() {
 void FemModel::add_terms(std::vector<std::unique_ptr<Term>>& terms) {
   const TermSwitches& on = scene_.terms;
   add_mass(terms);  // always: the FEM has no other inertia
-  // A tile law as the parameter file: its membrane holds stretch and shear in one (docs/models.md §6.9).
-  if (is_tile_law_file(scene_.fem.parameter_file) && (on.stretch || on.shear))
-    add_tile_membrane(terms, TileMembraneLaw(read_tile_law_file(scene_.fem.parameter_file)), mesh_, rest_);
+  // A tile law: its membrane holds stretch and shear in one, its curvature part the bending
+  // (docs/models.md §6.9).
+  const std::string law_path = tile_law_path(scene_.fem);
+  const TileLawFile law = law_path.empty() ? TileLawFile{} : read_tile_law_file(law_path);
+  if (!law_path.empty() && (on.stretch || on.shear)) add_tile_membrane(terms, TileMembraneLaw(law), mesh_, rest_);
   else {
     if (on.stretch) add_stretch(terms);
     if (on.shear) add_shear(terms);
   }
   if (on.stretch && scene_.fem.border_strip) add_border_stretch(terms);
-  if (on.bending && scene_.fem.grid_line_bending) add_grid_line_bending(terms);
+  if (on.bending && !law_path.empty()) add_tile_bending(terms, TileBendingLaw(law), mesh_, hinges_);
+  else if (on.bending && scene_.fem.grid_line_bending) add_grid_line_bending(terms);
   else if (on.bending && !hinges_.empty()) add_hinge_bending(terms);
   if (on.gravity) add_gravity(terms);
   if (on.wind) add_wind(terms);
@@ -449,10 +476,10 @@ std::map<std::string, std::string> FemModel::describe() const {
       " shear_lock_exponent=" + format(p.shear_lock_exponent) + " warp_bending_N_m=" + format(p.warp_bending_N_m) +
       " weft_bending_N_m=" + format(p.weft_bending_N_m);
   if (p.diagonal_bending_N_m > 0) m["fem_parameters"] += " diagonal_bending_N_m=" + format(p.diagonal_bending_N_m);
-  if (is_tile_law_file(scene_.fem.parameter_file))
-    m["tile_law"] = scene_.fem.parameter_file +
-                    " (its membrane instead of the stretch and shear laws, its bending "
-                    "at rest; docs/models.md §6.9)";
+  if (const std::string law = tile_law_path(scene_.fem); !law.empty())
+    m["tile_law"] = law +
+                    " (its membrane instead of the stretch and shear laws, its curvature part per triangle "
+                    "instead of the hinges; docs/models.md §6.9)";
   for (const auto& [key, value] : {std::pair{"stretch_coupling_N_per_m", p.stretch_coupling_N_per_m},
                                    std::pair{"warp_stretch_quartic_N_per_m", p.warp_stretch_quartic_N_per_m},
                                    std::pair{"weft_stretch_quartic_N_per_m", p.weft_stretch_quartic_N_per_m},

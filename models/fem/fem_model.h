@@ -5,6 +5,8 @@
 //   shear    → InPlaneShearTerm (lock)   gravity → NodalGravityTerm
 //   wind     → WindTerm (models/common, as the yarn model, per triangle)
 //   handles  → HandleSpringTerm (models/common) at the handle's vertex
+//   a tile law ([fem] tile_law, docs/models.md §6.9) → TileMembraneTerm instead of
+//            stretch and shear, TileBendingTerm (per triangle) instead of the bending
 // The lumped mass (LumpedMassTerm) is always present: the FEM has no other
 // inertia, so terms.inertia does not apply; mass is constant. Its vertex
 // shares are a third of each triangle's, or follow the yarn level's node masses.

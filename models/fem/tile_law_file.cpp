@@ -175,6 +175,11 @@ bool is_tile_law_file(const std::string& path) {
   return first == "name,value";
 }
 
+std::string tile_law_path(const FemSettings& fem) {
+  if (!fem.tile_law.empty()) return fem.tile_law;
+  return is_tile_law_file(fem.parameter_file) ? fem.parameter_file : std::string();
+}
+
 TileLawFile read_tile_law_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, 0, "the file cannot be read", "a tile law written by `weavelab tiles` (tile_law.csv)");

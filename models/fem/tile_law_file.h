@@ -13,10 +13,11 @@
 // The continuum splits W as it discretizes (docs/models.md §6.9):
 //   membrane  W_m(ε_u, ε_v, γ) = W(ε_u, ε_v, γ, 0, 0, 0), per triangle
 //             (terms/tile_membrane.h), extended beyond the sampled box;
-//   bending   the quadratic curvature part at zero membrane strain,
-//             k_warp = ∂²W/∂κ_u²(0) = 2W₀c[κ_u²]/s_κu², k_weft likewise, for the
-//             mesh's bending term (hinges or grid lines: ½k κ² per area on
-//             the grid mesh, docs/models.md §6.5).
+//   bending   the monomials with a curvature, per triangle with its curvature
+//             from the dihedral angles of its edges (tile_bending_law.h,
+//             terms/tile_bending.h, docs/models.md §6.9.1); their quadratic part at
+//             zero membrane strain, k_warp = ∂²W/∂κ_u²(0) = 2W₀c[κ_u²]/s_κu² and
+//             k_weft likewise, are the bending stiffnesses a parameter file would give.
 #pragma once
 #include <array>
 #include <string>
@@ -53,6 +54,9 @@ double yarn_matched_areal_density(const Scene& scene);
 // True when `path` names a tile law: its first line is "name,value" (a FEM
 // parameter file is TOML, which cannot start so). False for "" or an unreadable file.
 bool is_tile_law_file(const std::string& path);
+// The tile law the continuum runs: [fem] tile_law, else a parameter file that is a tile
+// law (docs/models.md §6.9); "" for none.
+std::string tile_law_path(const FemSettings& fem);
 // Reads and checks `path`; FemParameterError (models/fem/fem_material.h) on any bad row,
 // and unless the rows curvature_warp^2 and curvature_weft^2 give positive bending at rest.
 TileLawFile read_tile_law_file(const std::string& path);

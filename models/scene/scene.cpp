@@ -59,8 +59,9 @@
 //   [fem]
 //     stride ≥ 1, dividing wefts−1 and warps−1; with stride > 1 every pin and
 //       handle must lie on the stride lattice (i and j multiples of stride)
-//     mesh_file, parameter_file   paths relative to the scene file's directory,
-//       resolved on load; the file must exist
+//     mesh_file, parameter_file, tile_law   paths relative to the scene file's directory,
+//       resolved on load; the file must exist (a tile law's rows are checked when the
+//       continuum is built, models/fem/tile_law_file.h)
 //     areal_density_kg_per_m2, warp_stretch_N_per_m, weft_stretch_N_per_m, shear_N_per_m,
 //     shear_lock_angle_rad, shear_lock_exponent, warp_bending_N_m, weft_bending_N_m,
 //     diagonal_bending_N_m, stretch_coupling_N_per_m, warp_stretch_quartic_N_per_m,
@@ -358,7 +359,7 @@ void read_fem(TableReader& top, Scene& s) {
     // What has no knit counterpart: a mesh file, the woven border strip and grid-line widths (one
     // crossing spacing), the woven node masses, and a mass per area other than the yarn level's.
     for (const char* key :
-         {"mesh_file", "border_strip", "grid_line_bending", "yarn_node_mass", "areal_density_kg_per_m2"})
+         {"mesh_file", "border_strip", "grid_line_bending", "yarn_node_mass", "areal_density_kg_per_m2", "tile_law"})
       if (const toml::node* n = f->table().get(key))
         f->fail_at(*n, key,
                    "no " + std::string(key) +
@@ -371,7 +372,8 @@ void read_fem(TableReader& top, Scene& s) {
   namespace fs = std::filesystem;
   const fs::path base = fs::path(s.source).parent_path();
   for (auto [key, out] : {std::pair<const char*, std::string*>{"mesh_file", &fem.mesh_file},
-                          std::pair<const char*, std::string*>{"parameter_file", &fem.parameter_file}}) {
+                          std::pair<const char*, std::string*>{"parameter_file", &fem.parameter_file},
+                          std::pair<const char*, std::string*>{"tile_law", &fem.tile_law}}) {
     std::string rel;
     if (!f->read_string(key, rel, "a non-empty path (string), relative to the scene file's directory",
                         [](const std::string& x) { return !x.empty(); }))

@@ -73,6 +73,7 @@ struct FemSettings {
   int stride = 1;              // vertices every `stride`-th crossing
   std::string mesh_file;       // optional VTU with per-vertex rest UV ("" = build from the grid)
   std::string parameter_file;  // optional calibrated parameters ("" = [fem] values / defaults)
+  std::string tile_law;        // optional tile law of `weavelab tiles` (docs/models.md §6.9; "" = none)
   std::optional<double> areal_density_kg_per_m2;
   std::optional<double> warp_stretch_N_per_m, weft_stretch_N_per_m;  // per unit width
   std::optional<double> shear_N_per_m;

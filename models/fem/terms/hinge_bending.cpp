@@ -50,24 +50,20 @@ double HingeBendingTerm::energy(int e, const double* q) const {
   return 0.5 * coeff_[e] * d * d;
 }
 
-void HingeBendingTerm::evaluate(int el, const double* q, const double*, const ElementOutput& out) const {
+bool HingeBendingTerm::dihedral_derivatives(const double* q, double* theta, Vec12* grad, Mat12* hess) {
   Eigen::Map<const Vec3> x0(q), x1(q + 3), x2(q + 6), x3(q + 9);
   const Vec3 e = x1 - x0, a = x2 - x0, b = x3 - x0;
   const Vec3 n1 = e.cross(a), n2 = b.cross(e);
   const double ee = e.squaredNorm(), q1 = n1.squaredNorm(), q2 = n2.squaredNorm();
   const double scale = ee + a.squaredNorm() + b.squaredNorm();
-  // A collapsed edge or wing has no defined angle: no force (never met by a sane mesh).
-  if (ee <= 1e-24 * scale || q1 <= 1e-24 * scale * scale || q2 <= 1e-24 * scale * scale) return;
+  // A collapsed edge or wing has no defined angle (never met by a sane mesh).
+  if (ee <= 1e-24 * scale || q1 <= 1e-24 * scale * scale || q2 <= 1e-24 * scale * scale) return false;
   const double E = std::sqrt(ee);
-  const double theta = std::atan2(n1.cross(n2).dot(e) / E, n1.dot(n2));
+  *theta = std::atan2(n1.cross(n2).dot(e) / E, n1.dot(n2));
   const double t2 = a.dot(e) / ee, t3 = b.dot(e) / ee;
   const Vec3 g2 = -E / q1 * n1, g3 = -E / q2 * n2;
-  Eigen::Matrix<double, 12, 1> grad;
-  grad << -(1 - t2) * g2 - (1 - t3) * g3, -t2 * g2 - t3 * g3, g2, g3;
-
-  const double c = coeff_[el], d = theta - theta0_[el];
-  VecMap(out.force) = -c * d * grad;
-  if (!out.dfdq) return;
+  *grad << -(1 - t2) * g2 - (1 - t3) * g3, -t2 * g2 - t3 * g3, g2, g3;
+  if (!hess) return true;
 
   // Jacobians (3×12) of the intermediate vectors; rows of scalars (1×12).
   const Mat3 I = Mat3::Identity();
@@ -88,12 +84,23 @@ void HingeBendingTerm::evaluate(int el, const double* q, const double*, const El
   // t = (a·e)/E²:  dt = (eᵀda + aᵀde)/E² − 2t dE/E
   const R12 dt2 = (e.transpose() * Ja + a.transpose() * Je) / ee - 2.0 * t2 / E * dE;
   const R12 dt3 = (e.transpose() * Jb + b.transpose() * Je) / ee - 2.0 * t3 / E * dE;
-  Eigen::Matrix<double, 12, 12> H;
+  Mat12 H;
   H.middleRows<3>(0) = g2 * dt2 - (1 - t2) * Jg2 + g3 * dt3 - (1 - t3) * Jg3;
   H.middleRows<3>(3) = -g2 * dt2 - t2 * Jg2 - g3 * dt3 - t3 * Jg3;
   H.middleRows<3>(6) = Jg2;
   H.middleRows<3>(9) = Jg3;
-  MatMap(out.dfdq) = -c * (grad * grad.transpose() + d * 0.5 * (H + H.transpose()));
+  *hess = 0.5 * (H + H.transpose());
+  return true;
+}
+
+void HingeBendingTerm::evaluate(int el, const double* q, const double*, const ElementOutput& out) const {
+  double theta;
+  Vec12 grad;
+  Mat12 hess;
+  if (!dihedral_derivatives(q, &theta, &grad, out.dfdq ? &hess : nullptr)) return;  // no angle: no force
+  const double c = coeff_[el], d = theta - theta0_[el];
+  VecMap(out.force) = -c * d * grad;
+  if (out.dfdq) MatMap(out.dfdq) = -c * (grad * grad.transpose() + d * hess);
 }
 
 std::vector<std::string> HingeBendingTerm::parameter_keys() const {

@@ -55,6 +55,11 @@ class HingeBendingTerm : public StencilTerm<12> {
   double edge_stiffness(const Vec2& edge_uv) const;
   // Signed dihedral angle of the hinge at local positions q (12 doubles).
   static double dihedral_angle(const double* q);
+  using Vec12 = Eigen::Matrix<double, 12, 1>;
+  using Mat12 = Eigen::Matrix<double, 12, 12>;
+  // θ, ∇θ and (hess non-null) the symmetric ∇²θ at q; false where the edge or a wing
+  // has collapsed (no angle).
+  static bool dihedral_derivatives(const double* q, double* theta, Vec12* grad, Mat12* hess);
 
  private:
   // ∂k_e/∂k for k = warp, weft, diagonal at edge direction d (unit).

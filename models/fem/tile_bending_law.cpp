@@ -1,0 +1,172 @@
+#include "models/fem/tile_bending_law.h"
+
+#include <algorithm>
+
+#include "models/fem/fem_material.h"
+
+namespace wl {
+namespace {
+
+constexpr int kMaxPower = 12;
+
+// ∂ⁿ/∂tⁿ of t^e: e(e−1)…(e−n+1) t^{e−n}, from the powers t^0 … t^12.
+double dpow(const double* powers, int e, int n) {
+  if (n > e) return 0.0;
+  double f = 1.0;
+  for (int i = 0; i < n; ++i) f *= e - i;
+  return f * powers[e - n];
+}
+
+bool is_curvature(const std::array<int, 6>& e) { return e[3] > 0 || e[4] > 0 || e[5] > 0; }
+
+}  // namespace
+
+TileBendingLaw::TileBendingLaw(const TileLawFile& law) : energy_scale_(law.energy_scale) {
+  for (int k = 0; k < 6; ++k) {
+    scale_[k] = law.scale[k];
+    lo_[k] = law.lo[k] / law.scale[k];
+    hi_[k] = law.hi[k] / law.scale[k];
+  }
+  for (const TileLawMonomial& t : law.terms) {
+    if (!is_curvature(t.exponent)) continue;
+    Monomial m;
+    m.exponent = t.exponent;
+    for (int k = 0; k < 6; ++k)
+      if (t.exponent[k] > 0) m.active[m.num_active++] = k;
+    exponent_.push_back(m);
+    coefficient_.push_back(t.coefficient);
+    // h_k = ∂²P/∂t_k²(0) = 2c[t_k²] along each curvature; the file's reader asks for κ_u², κ_v² > 0.
+    if (m.num_active != 1 || t.exponent[m.active[0]] != 2) continue;
+    rest_curvature_[m.active[0]] = 2.0 * t.coefficient;
+    if (t.coefficient < 0)
+      throw FemParameterError(
+          law.source + ":" + std::to_string(t.line) + ": the bending stiffness at rest along " +
+          kTileLawStrainNames[m.active[0]] + " " +
+          std::to_string(rest_curvature_[m.active[0]] * energy_scale_ / (scale_[m.active[0]] * scale_[m.active[0]])) +
+          " N·m, expected ≥ 0 (the law's continuation beyond the sampled box, "
+          "docs/models.md §6.9)");
+  }
+}
+
+void TileBendingLaw::polynomial(const double* c, const std::array<double, 6>& t, double* p, double* g, double* h,
+                                double* third) const {
+  double powers[6][kMaxPower + 1];
+  for (int k = 0; k < 6; ++k) {
+    powers[k][0] = 1.0;
+    for (int n = 1; n <= kMaxPower; ++n) powers[k][n] = powers[k][n - 1] * t[k];
+  }
+  *p = 0.0;
+  std::fill(g, g + 6, 0.0);
+  if (h) std::fill(h, h + 36, 0.0);
+  if (third) std::fill(third, third + 216, 0.0);
+  for (size_t i = 0; i < exponent_.size(); ++i) {
+    if (c[i] == 0.0) continue;
+    const Monomial& mo = exponent_[i];
+    const int n = mo.num_active;
+    // d[j][r] = ∂^r t_k^{e_k} for the j-th active strain k; ∂^α t^e = c Π_j d[j][α_j].
+    double d[6][4];
+    for (int j = 0; j < n; ++j)
+      for (int r = 0; r < 4; ++r) d[j][r] = dpow(powers[mo.active[j]], mo.exponent[mo.active[j]], r);
+    int alpha[6] = {};
+    auto derivative = [&] {
+      double x = c[i];
+      for (int j = 0; j < n; ++j) x *= d[j][alpha[j]];
+      return x;
+    };
+    *p += derivative();
+    for (int a = 0; a < n; ++a) {
+      const int ka = mo.active[a];
+      ++alpha[a];
+      g[ka] += derivative();
+      for (int b = 0; h && b < n; ++b) {
+        const int kb = mo.active[b];
+        ++alpha[b];
+        h[6 * ka + kb] += derivative();
+        for (int e = 0; third && e < n; ++e) {
+          ++alpha[e];
+          third[36 * ka + 6 * kb + mo.active[e]] += derivative();
+          --alpha[e];
+        }
+        --alpha[b];
+      }
+      --alpha[a];
+    }
+  }
+}
+
+// In t: E = P(p) + ∇P(p)·d + ½Σ h_k d_k², p the nearest point of the box, d = t − p
+// (the same continuation as TileMembraneLaw's, over six strains):
+//   ∂E/∂t_j = ∇P_j(p) + h_j d_j (j clamped),  ∇P_j(p) + Σ_k ∇²P_jk(p) d_k (j inside);
+//   ∂²E/∂t_i∂t_j = h_i δ_ij (both clamped), ∇²P_ij(p) (one clamped),
+//                  ∇²P_ij(p) + Σ_k ∂³P_ijk(p) d_k (both inside).
+void TileBendingLaw::extend(const double* c, const std::array<double, 6>& rest, const std::array<double, 6>& theta,
+                            double* w, std::array<double, 6>* g, std::array<double, 36>* h) const {
+  std::array<double, 6> t{}, p{}, d{};
+  std::array<bool, 6> clamped{};
+  bool outside = false;
+  for (int k = 0; k < 6; ++k) {
+    t[k] = theta[k] / scale_[k];
+    p[k] = std::clamp(t[k], lo_[k], hi_[k]);
+    d[k] = t[k] - p[k];
+    clamped[k] = d[k] != 0.0;
+    outside = outside || clamped[k];
+  }
+  double P, G[6], H[36]{}, T[216];
+  polynomial(c, p, &P, G, outside || h ? H : nullptr, outside && h ? T : nullptr);
+  double e = P;
+  std::array<double, 6> ge{};
+  for (int j = 0; j < 6; ++j) {
+    ge[j] = G[j];
+    if (clamped[j]) {
+      e += G[j] * d[j] + 0.5 * rest[j] * d[j] * d[j];
+      ge[j] += rest[j] * d[j];
+    } else if (outside) {
+      for (int k = 0; k < 6; ++k) ge[j] += H[6 * j + k] * d[k];
+    }
+  }
+  *w = energy_scale_ * e;
+  if (g)
+    for (int j = 0; j < 6; ++j) (*g)[j] = energy_scale_ * ge[j] / scale_[j];
+  if (!h) return;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) {
+      double x;
+      if (clamped[i] && clamped[j]) x = i == j ? rest[i] : 0.0;
+      else if (clamped[i] || clamped[j]) x = H[6 * i + j];
+      else {
+        x = H[6 * i + j];
+        if (outside)
+          for (int k = 0; k < 6; ++k) x += T[36 * i + 6 * j + k] * d[k];
+      }
+      (*h)[6 * i + j] = energy_scale_ * x / (scale_[i] * scale_[j]);
+    }
+}
+
+void TileBendingLaw::evaluate(const std::array<double, 6>& theta, double* w, std::array<double, 6>* g,
+                              std::array<double, 36>* h) const {
+  extend(coefficient_.data(), rest_curvature_, theta, w, g, h);
+}
+
+void TileBendingLaw::evaluate_unit(int i, const std::array<double, 6>& theta, double* w,
+                                   std::array<double, 6>* g) const {
+  std::vector<double> unit(coefficient_.size(), 0.0);
+  unit[i] = 1.0;
+  std::array<double, 6> rest{};  // h_k = 2c[t_k²]: 2 for the unit law of a curvature squared
+  const Monomial& m = exponent_[i];
+  if (m.num_active == 1 && m.exponent[m.active[0]] == 2) rest[m.active[0]] = 2.0;
+  extend(unit.data(), rest, theta, w, g, nullptr);
+}
+
+std::string TileBendingLaw::name(int i) const {
+  std::string n;
+  for (int k = 0; k < 6; ++k) {
+    const int e = exponent_[i].exponent[k];
+    if (e == 0) continue;
+    if (!n.empty()) n += '*';
+    n += kTileLawStrainNames[k];
+    if (e > 1) n += '^' + std::to_string(e);
+  }
+  return n;
+}
+
+}  // namespace wl
