@@ -7,16 +7,6 @@
 namespace wl {
 namespace {
 
-constexpr int kMaxPower = 12;
-
-// ∂ⁿ/∂tⁿ of t^e: e(e−1)…(e−n+1) t^{e−n}, from the powers t^0 … t^12.
-double dpow(const double* powers, int e, int n) {
-  if (n > e) return 0.0;
-  double f = 1.0;
-  for (int i = 0; i < n; ++i) f *= e - i;
-  return f * powers[e - n];
-}
-
 bool is_curvature(const std::array<int, 6>& e) { return e[3] > 0 || e[4] > 0 || e[5] > 0; }
 
 }  // namespace
@@ -50,10 +40,10 @@ TileBendingLaw::TileBendingLaw(const TileLawFile& law) : energy_scale_(law.energ
 
 void TileBendingLaw::polynomial(const double* c, const std::array<double, 6>& t, double* p, double* g, double* h,
                                 double* third) const {
-  double powers[6][kMaxPower + 1];
+  double powers[6][kTileLawMaxPower + 1];
   for (int k = 0; k < 6; ++k) {
     powers[k][0] = 1.0;
-    for (int n = 1; n <= kMaxPower; ++n) powers[k][n] = powers[k][n - 1] * t[k];
+    for (int n = 1; n <= kTileLawMaxPower; ++n) powers[k][n] = powers[k][n - 1] * t[k];
   }
   *p = 0.0;
   std::fill(g, g + 6, 0.0);
@@ -66,7 +56,7 @@ void TileBendingLaw::polynomial(const double* c, const std::array<double, 6>& t,
     // d[j][r] = ∂^r t_k^{e_k} for the j-th active strain k; ∂^α t^e = c Π_j d[j][α_j].
     double d[6][4];
     for (int j = 0; j < n; ++j)
-      for (int r = 0; r < 4; ++r) d[j][r] = dpow(powers[mo.active[j]], mo.exponent[mo.active[j]], r);
+      for (int r = 0; r < 4; ++r) d[j][r] = power_derivative(powers[mo.active[j]], mo.exponent[mo.active[j]], r);
     int alpha[6] = {};
     auto derivative = [&] {
       double x = c[i];

@@ -90,16 +90,6 @@ void read_row(const std::string& name, double value, int line, TileLawFile& law,
   law.terms.push_back({*e, value, line});
 }
 
-// ∂ⁿ/∂tⁿ of t^e: e(e−1)…(e−n+1) t^{e−n}, from the powers t^0 … t^12.
-double dpow(const double* powers, int e, int n) {
-  if (n > e) return 0.0;
-  double f = 1.0;
-  for (int i = 0; i < n; ++i) f *= e - i;
-  return f * powers[e - n];
-}
-
-constexpr int kMaxPower = 12;
-
 }  // namespace
 
 double TileLawFile::warp_bending_N_m() const {
@@ -214,10 +204,10 @@ TileMembraneLaw::TileMembraneLaw(const TileLawFile& law) : energy_scale_(law.ene
 
 void TileMembraneLaw::polynomial(const double* c, const std::array<double, 3>& t, double* p, double* g, double* h,
                                  double* third) const {
-  double powers[3][kMaxPower + 1];
+  double powers[3][kTileLawMaxPower + 1];
   for (int k = 0; k < 3; ++k) {
     powers[k][0] = 1.0;
-    for (int n = 1; n <= kMaxPower; ++n) powers[k][n] = powers[k][n - 1] * t[k];
+    for (int n = 1; n <= kTileLawMaxPower; ++n) powers[k][n] = powers[k][n - 1] * t[k];
   }
   *p = 0.0;
   std::fill(g, g + 3, 0.0);
@@ -226,9 +216,10 @@ void TileMembraneLaw::polynomial(const double* c, const std::array<double, 3>& t
   for (size_t i = 0; i < exponent_.size(); ++i) {
     if (c[i] == 0.0) continue;
     const std::array<int, 3>& e = exponent_[i];
-    // ∂^α t^e = Π_k dpow(t_k, e_k, α_k), α the count of each variable among the derivative's indices.
+    // ∂^α t^e = Π_k power_derivative(t_k, e_k, α_k), α the count of each variable among the derivative's indices.
     auto derivative = [&](const std::array<int, 3>& alpha) {
-      return dpow(powers[0], e[0], alpha[0]) * dpow(powers[1], e[1], alpha[1]) * dpow(powers[2], e[2], alpha[2]);
+      return power_derivative(powers[0], e[0], alpha[0]) * power_derivative(powers[1], e[1], alpha[1]) *
+             power_derivative(powers[2], e[2], alpha[2]);
     };
     *p += c[i] * derivative({0, 0, 0});
     for (int j = 0; j < 3; ++j) {

@@ -27,6 +27,17 @@
 
 namespace wl {
 
+// The largest exponent of a monomial of a tile law.
+inline constexpr int kTileLawMaxPower = 12;
+
+// ∂ⁿ/∂tⁿ of t^e: e(e−1)…(e−n+1) t^{e−n}, from the powers t^0 … t^kTileLawMaxPower.
+inline double power_derivative(const double* powers, int e, int n) {
+  if (n > e) return 0.0;
+  double f = 1.0;
+  for (int i = 0; i < n; ++i) f *= e - i;
+  return f * powers[e - n];
+}
+
 inline constexpr std::array<const char*, 6> kTileLawStrainNames{"stretch_warp",   "stretch_weft",   "shear",
                                                                 "curvature_warp", "curvature_weft", "twist"};
 
