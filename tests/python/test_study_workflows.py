@@ -1,5 +1,5 @@
 """The studies as one workflow (Snakefile at the root, experiments/README.md):
-the dry run lists every study, `studies=` chooses some, and the stability study
+the dry run lists every study, `index` alone runs no study, `studies=` chooses some, and the stability study
 runs end to end on a 5×5 cloth into a temporary folder: cells, merge, chart and
 RESULTS.md with its figure, table, cost and commands."""
 import csv
@@ -43,7 +43,12 @@ class RootWorkflow(unittest.TestCase):
         self.assertGreater(len(STUDIES), 0)
         for study in STUDIES:
             self.assertIn(f"{study}_results", listed, study)
-        self.assertIn("index", listed)
+        self.assertIn("studies_then_index", listed)
+
+    def test_the_index_alone_runs_no_study(self):
+        p = snakemake("-n", "--forceall", "--cores", "1", "index")
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        self.assertEqual(jobs(p.stdout) - {"total"}, {"index"})
 
     def test_chosen_studies(self):
         p = snakemake("-n", "--forceall", "--cores", "1", config=["studies=stability"])
