@@ -319,7 +319,12 @@ std::string SparseSolver::description() const {
     case LinearSolverMethod::amg:
       return "amg (gmres restart " + std::to_string(kGmresRestart) +
              ", relative residual 1e-10, preconditioner: BoomerAMG V-cycle of (A + A^T)/2, " +
-             std::to_string(impl_->amg ? impl_->amg->num_kinds() : 1) + " unknown kinds)";
+             std::to_string(impl_->amg ? impl_->amg->num_kinds() : 1) + " unknown kinds" +
+             (stats_.amg_lu_fallbacks > 0
+                  ? "; umfpack LU of A after " + std::to_string(stats_.amg_lu_fallbacks) +
+                        " fresh V-cycles that did not serve"
+                  : std::string()) +
+             ")";
     case LinearSolverMethod::automatic: break;
   }
   return "auto (no matrix yet)";
@@ -445,7 +450,7 @@ bool SparseSolver::factorize(const SparseMatrix& a) {
       impl_->rows->update(reduced_);
       impl_->precond_current = false;
       ++impl_->reuses;
-      const bool grown = method_ == LinearSolverMethod::amg
+      const bool grown = impl_->precond == Impl::Precond::amg
                              ? impl_->last_iterations > kAmgRefreshGrowth * impl_->fresh_iterations
                              : impl_->last_iterations > kRefactorIterations;
       const bool stale = impl_->precond == Impl::Precond::none || grown || impl_->reuses > kMaxReuse;
@@ -473,11 +478,13 @@ bool SparseSolver::gmres_solve(const Vec& rb, Vec& rx, bool from_x) const {
     if (r.converged) return true;
     failure_ = "GMRES reached a relative residual of " + std::to_string(r.relative_residual) + " after " +
                std::to_string(r.iterations) + " iterations";
-    // A kept preconditioner may have drifted too far: retry with a fresh one;
-    // a fresh LLᵀ of S that does not serve (A far from symmetric): with the LU of A.
+    // A kept preconditioner may have drifted too far: retry with a fresh one.
+    // A fresh LLᵀ or V-cycle of S that does not serve (A far from symmetric;
+    // restarted GMRES stalling under the V-cycle, as on a knit): with the LU of A.
     if (!impl_->precond_current) {
       if (!factor_preconditioner()) return false;
-    } else if (impl_->precond == Impl::Precond::cholesky && factor_lu()) {
+    } else if (impl_->precond != Impl::Precond::lu && factor_lu()) {
+      if (impl_->precond == Impl::Precond::amg) ++stats_.amg_lu_fallbacks;
       impl_->precond = Impl::Precond::lu;
     } else {
       return false;

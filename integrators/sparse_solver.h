@@ -82,6 +82,7 @@ class SparseSolver {
     long factorizations = 0;  // numeric factorizations (of A or of S)
     long solves = 0;
     long krylov_iterations = 0;
+    long amg_lu_fallbacks = 0;   // amg: fresh V-cycles that did not serve, replaced by the LU of A
     double max_asymmetry = 0.0;  // max ‖A − Aᵀ‖_F / ‖A‖_F over the matrices seen
   };
 
