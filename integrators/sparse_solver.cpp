@@ -320,10 +320,9 @@ std::string SparseSolver::description() const {
       return "amg (gmres restart " + std::to_string(kGmresRestart) +
              ", relative residual 1e-10, preconditioner: BoomerAMG V-cycle of (A + A^T)/2, " +
              std::to_string(impl_->amg ? impl_->amg->num_kinds() : 1) + " unknown kinds" +
-             (stats_.amg_lu_fallbacks > 0
-                  ? "; umfpack LU of A after " + std::to_string(stats_.amg_lu_fallbacks) +
-                        " fresh V-cycles that did not serve"
-                  : std::string()) +
+             (stats_.amg_lu_fallbacks > 0 ? "; umfpack LU of A after " + std::to_string(stats_.amg_lu_fallbacks) +
+                                                " fresh V-cycles that did not serve"
+                                          : std::string()) +
              ")";
     case LinearSolverMethod::automatic: break;
   }
