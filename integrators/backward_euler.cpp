@@ -58,7 +58,8 @@ StepResult BackwardEuler::step_linear(double h, int* iters) {
   if (!solver_->solve(rhs_, dv_, warm)) return {Outcome::diverged, solver_->failure()};
   dv_step_ = h;
   ++stats_.linear_solves;
-  if (dq_dp_.cols() > 0) propagate_linear_sensitivities(h, dv_);
+  if (dq_dp_.cols() > 0 && !propagate_linear_sensitivities(h, dv_))
+    return {Outcome::diverged, "sensitivity solve: " + solver_->failure()};
   v_ += dv_;
   zero_fixed(v_, fixed_);
   q_ += h * v_;
@@ -120,7 +121,11 @@ StepResult BackwardEuler::step_newton(double h, int* iters) {
       v_ = v;
       zero_fixed(v_, fixed_);
       q_ = q0 + h * v_;
-      if (dq_dp_.cols() > 0) propagate_newton_sensitivities(h, q0, v0, m0);
+      if (dq_dp_.cols() > 0 && !propagate_newton_sensitivities(h, q0, v0, m0)) {
+        q_ = q0;  // the step is not taken
+        v_ = v0;
+        return {Outcome::diverged, "sensitivity solve: singular step matrix"};
+      }
       return {};
     }
   }

@@ -43,8 +43,9 @@ class BackwardEuler : public Integrator {
   void form_step_matrix(double h, const SparseMatrix* mass = nullptr);
   // Sensitivity updates (backward_euler_sensitivity.cpp, docs/models.md §9.2), called
   // after the step's solve and before the state moves on.
-  void propagate_linear_sensitivities(double h, const Vec& dv);
-  void propagate_newton_sensitivities(double h, const Vec& q0, const Vec& v0, const SparseMatrix& m0);
+  // false when a sensitivity solve fails (the step then ends as diverged).
+  bool propagate_linear_sensitivities(double h, const Vec& dv);
+  bool propagate_newton_sensitivities(double h, const Vec& q0, const Vec& v0, const SparseMatrix& m0);
   // x = a_⁻¹ b by iterative refinement on the factorization in hand (of a_ or
   // of a nearby matrix); refactorizes a_ when that does not converge.
   bool solve_step_matrix(const Vec& b, Vec& x);

@@ -2,8 +2,6 @@
 // S_q = ∂q/∂p and S_v = ∂v/∂p, one column per tracked parameter, are carried by
 // differentiating the discrete step that was taken; each column costs one solve
 // with the step's own matrix.
-#include <stdexcept>
-
 #include "integrators/backward_euler.h"
 
 namespace wl {
@@ -11,7 +9,7 @@ namespace wl {
 // be-linear: A₀Δv = h(f₀ + hK₀v₀). Differentiated with K₀, D₀ held (their
 // derivatives are second derivatives of f, O(h²) per step, docs/models.md §9.2):
 //   A₀ ∂Δv/∂p = h(∂f/∂p + K₀(S_q + hS_v) + D₀S_v) − (∂M/∂p + ∂M/∂q·S_q)Δv.
-void BackwardEuler::propagate_linear_sensitivities(double h, const Vec& dv) {
+bool BackwardEuler::propagate_linear_sensitivities(double h, const Vec& dv) {
   Vec dfdp, rhs, x, mw(dv.size());
   for (Eigen::Index k = 0; k < dq_dp_.cols(); ++k) {
     const std::string& key = sensitivity_keys_[k];
@@ -22,18 +20,19 @@ void BackwardEuler::propagate_linear_sensitivities(double h, const Vec& dv) {
     model_->mass_parameter_product(key, q_, dv, mw);
     model_->mass_directional_product(q_, sq, dv, mw);
     rhs -= mw;
-    solver_->solve(rhs, x);
+    if (!solver_->solve(rhs, x)) return false;
     ++stats_.linear_solves;
     dv_dp_.col(k) = sv + x;
     for (int i : fixed_) dv_dp_(i, k) = 0.0;
     dq_dp_.col(k) = sq + h * dv_dp_.col(k);
   }
+  return true;
 }
 
 // be-newton: G(v₁) = M(q₀)(v₁ − v₀) − h f(q₀ + hv₁, v₁; p) = 0 at convergence, so
 //   A₁ S_v₁ = M₀S_v₀ + hK₁S_q₀ − (∂M/∂p + ∂M/∂q·S_q₀)(v₁ − v₀) + h ∂f/∂p(q₁, v₁),
 //   A₁ = M₀ − hD₁ − h²K₁ at the converged state (ev_ holds its Jacobians).
-void BackwardEuler::propagate_newton_sensitivities(double h, const Vec& q0, const Vec& v0, const SparseMatrix& m0) {
+bool BackwardEuler::propagate_newton_sensitivities(double h, const Vec& q0, const Vec& v0, const SparseMatrix& m0) {
   form_step_matrix(h);
   const Vec dv = v_ - v0;
   Vec dfdp, rhs, x, mw(dv.size());
@@ -47,11 +46,12 @@ void BackwardEuler::propagate_newton_sensitivities(double h, const Vec& q0, cons
     model_->mass_directional_product(q0, sq, dv, mw);
     rhs -= mw;
     for (int i : fixed_) rhs[i] = 0.0;
-    if (!solve_step_matrix(rhs, x)) throw std::runtime_error("sensitivity solve: singular step matrix");
+    if (!solve_step_matrix(rhs, x)) return false;
     dv_dp_.col(k) = x;
     for (int i : fixed_) dv_dp_(i, k) = 0.0;
     dq_dp_.col(k) = sq + h * dv_dp_.col(k);
   }
+  return true;
 }
 
 bool BackwardEuler::solve_step_matrix(const Vec& b, Vec& x) {

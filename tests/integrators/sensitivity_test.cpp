@@ -75,6 +75,29 @@ const std::vector<std::string> kYarnKeys = {yarn_type_key("default", kDensityFie
 // Without frozen inputs (Cirio shear, no friction) the be-newton sensitivity is
 // the exact derivative of the discrete trajectory, with sliding (M(q), ∂M/∂q·S_q)
 // and without; the continuum likewise (density through ∂M/∂p).
+// A sensitivity solve that cannot reach its tolerance (a drag of 9.2e18
+// N·s/m³ makes the step matrix too ill-conditioned for the refinement) ends
+// the step as diverged with the state it started from, as a failed Newton
+// iteration does, rather than throwing out of the integrator.
+TEST(ForwardSensitivity, AFailedSensitivitySolveEndsTheStepAsDiverged) {
+  std::string toml = test::hanging_cloth_toml(6, 0.02);
+  const std::string density = "air_density_kg_per_m3 = 2.0\n";
+  ASSERT_NE(toml.find(density), std::string::npos);
+  toml.replace(toml.find(density), density.size(), density + "drag_Ns_per_m3 = 9.2e18\n");
+  const Scene scene = parse_scene(toml, "sensitivity.toml");
+  auto model = make_model(scene, "yarn");
+  auto in = make_integrator("be-newton");
+  in->track_sensitivities({"contact.shear_modulus_Pa"});
+  IntegratorOptions opt;
+  opt.dt = 0.001;
+  in->initialize(*model, 0.0, model->initial_q(), model->initial_v(), opt);
+  const Vec q0 = in->q();
+  const StepResult r = in->advance_to(opt.dt);
+  EXPECT_EQ(r.outcome, Outcome::diverged);
+  EXPECT_NE(r.message.find("sensitivity solve"), std::string::npos) << r.message;
+  EXPECT_EQ((in->q() - q0).norm(), 0.0);
+}
+
 TEST(ForwardSensitivity, BeNewtonIsExactWithoutFrozenInputs) {
   Scene s = hanging();
   s.contact.shear_model = ContactParams::ShearModel::cirio;
