@@ -48,13 +48,14 @@ def write_published(folder, step, duration=STEPS * H):
         f.write("step,relative_residual\n0,1e-15\n1,3e-15\n")
 
 
-def write_lab(folder, error_rms):
-    """A weavelab run folder: a frame every step H, the time error per frame in its summary."""
+def write_lab(folder, step, error_rms):
+    """A weavelab run folder: a frame every `step` over STEPS·H, the time error per frame in its summary."""
     import meshio
     os.makedirs(os.path.join(folder, "frames"))
     entries = []
-    for k in range(STEPS + 1):
-        t = k * H
+    count = round(STEPS * H / step)
+    for k in range(count + 1):
+        t = k * step
         path = os.path.join("frames", f"run_{k:05d}.vtu")
         points = exact(t) + np.array([0.0, DRIFT * t, 0.0])
         meshio.write(os.path.join(folder, path), meshio.Mesh(points, [("vertex", [[0]])]))
@@ -62,9 +63,9 @@ def write_lab(folder, error_rms):
     with open(os.path.join(folder, "run.pvd"), "w") as f:
         f.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n'
                 + "\n".join(entries) + "\n</Collection>\n</VTKFile>\n")
-    times = [k * H for k in range(STEPS + 1)]
+    times = [k * step for k in range(count + 1)]
     with open(os.path.join(folder, "summary.json"), "w") as f:
-        json.dump({"time_error": {"times_s": times, "rms_m": [error_rms * k for k in range(STEPS + 1)]}}, f)
+        json.dump({"time_error": {"times_s": times, "rms_m": [error_rms * t / H for t in times]}}, f)
 
 
 class MakeVariantTime(unittest.TestCase):
@@ -98,48 +99,64 @@ class MakeVariantTime(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
 
+def write_levels(tmp, covered=STEPS * H):
+    """Published and lab runs at H, 2H and 4H; the published run at 4H stops at `covered`."""
+    lab_error = 1e-7
+    for n, level in enumerate(("h", "2h", "4h")):
+        step = H * 2 ** n
+        write_published(os.path.join(tmp, f"pub_{level}"), step, STEPS * H if level != "4h" else covered)
+        write_lab(os.path.join(tmp, f"lab_{level}"), step, lab_error)
+    return lab_error
+
+
+def compare(tmp):
+    out = os.path.join(tmp, "fine.csv")
+    done = run_script("compare_fine.py", "--step-s", repr(H),
+                      "--published", f"direct={tmp}/pub_h,{tmp}/pub_2h,{tmp}/pub_4h",
+                      "--run", f"compat={tmp}/lab_h,{tmp}/lab_2h,{tmp}/lab_4h", "--out", out)
+    rows = []
+    if os.path.exists(out):
+        with open(out, newline="") as f:
+            rows = list(csv.DictReader(f))
+    return done, rows
+
+
 class CompareFine(unittest.TestCase):
     def test_distances_and_time_errors_in_closed_form(self):
         with tempfile.TemporaryDirectory() as tmp:
-            write_published(os.path.join(tmp, "pub_h"), H)
-            write_published(os.path.join(tmp, "pub_2h"), 2 * H)
-            lab_error = 1e-7
-            write_lab(os.path.join(tmp, "lab"), lab_error)
-            out = os.path.join(tmp, "fine.csv")
-            done = run_script("compare_fine.py", "--step-s", repr(H),
-                              "--published", f"direct={tmp}/pub_h,{tmp}/pub_2h", "--run", f"compat={tmp}/lab",
-                              "--out", out)
+            lab_error = write_levels(tmp)
+            done, rows = compare(tmp)
             self.assertEqual(done.returncode, 0, done.stderr)
-            with open(out, newline="") as f:
-                rows = list(csv.DictReader(f))
-            self.assertEqual(len(rows), 1)
-            row = rows[0]
+            self.assertEqual([r["level"] for r in rows], ["H", "2H", "4H", "zero step"])
             t = STEPS * H  # every quantity below grows with t: its worst is at the last step
             motion = math.hypot(SLOPE * H * t, FALL * t * t)
-            # The published run at H is SLOPE·H·t from the exact motion, its estimate from the run at 2H
-            # (first order) is exactly that; the lab run's distance from it is √((SLOPE·H·t)² + (DRIFT·t)²).
-            self.assertAlmostEqual(float(row["largest_rms_motion_m"]) / motion, 1.0, places=12)
-            self.assertAlmostEqual(float(row["fraction_of_motion"]),
-                                   math.hypot(SLOPE * H * t, DRIFT * t) / motion, places=12)
-            self.assertAlmostEqual(float(row["against_time_error_worst_fraction"]), SLOPE * H * t / motion,
-                                   places=12)
-            self.assertAlmostEqual(float(row["run_time_error_worst_fraction"]), lab_error * STEPS / motion,
-                                   places=12)
-            self.assertEqual(float(row["against_worst_solve_residual"]), 3e-15)
-            self.assertEqual(row["run"], "compat")
-            self.assertEqual(row["against"], "published (direct)")
+            for row, step in zip(rows, (H, 2 * H, 4 * H)):
+                # The published run at S is SLOPE·S·t from the exact motion, and its estimate from the
+                # neighbouring run (first order) is exactly that; the lab run is DRIFT·t from the exact
+                # motion along another axis.
+                self.assertEqual(float(row["step_s"]), step)
+                self.assertAlmostEqual(float(row["largest_rms_motion_m"]) / motion, 1.0, places=12)
+                self.assertAlmostEqual(float(row["fraction_of_motion"]),
+                                       math.hypot(SLOPE * step * t, DRIFT * t) / motion, places=12)
+                self.assertAlmostEqual(float(row["against_time_error_worst_fraction"]), SLOPE * step * t / motion,
+                                       places=12)
+                self.assertAlmostEqual(float(row["run_time_error_worst_fraction"]), lab_error * t / H / motion,
+                                       places=12)
+                self.assertEqual(float(row["against_worst_solve_residual"]), 3e-15)
+                self.assertEqual((row["run"], row["against"]), ("compat", "published (direct)"))
+            # Extrapolated to a zero step the published step's error is gone and the models' difference,
+            # DRIFT·t, is left; the extrapolation is exact here, so its error estimate is zero.
+            zero = rows[3]
+            self.assertAlmostEqual(float(zero["fraction_of_motion"]), DRIFT * t / motion, places=12)
+            self.assertLess(float(zero["run_time_error_worst_fraction"]), 1e-12)
 
     def test_coarse_run_that_does_not_cover_is_exit_2(self):
         with tempfile.TemporaryDirectory() as tmp:
-            write_published(os.path.join(tmp, "pub_h"), H)
-            write_published(os.path.join(tmp, "pub_2h"), 2 * H, duration=2 * H)  # stops halfway
-            write_lab(os.path.join(tmp, "lab"), 1e-7)
-            done = run_script("compare_fine.py", "--step-s", repr(H),
-                              "--published", f"direct={tmp}/pub_h,{tmp}/pub_2h", "--run", f"compat={tmp}/lab",
-                              "--out", os.path.join(tmp, "fine.csv"))
+            write_levels(tmp, covered=2 * H)  # the run at 4H stops halfway
+            done, rows = compare(tmp)
             self.assertEqual(done.returncode, 2)
             self.assertIn("does not cover", done.stderr)
-            self.assertFalse(os.path.exists(os.path.join(tmp, "fine.csv")))
+            self.assertEqual(rows, [])
 
 
 if __name__ == "__main__":
