@@ -2,8 +2,8 @@
 // published_code study. It is compiled by build_published.py against the authors' sources,
 // which that script fetches into a scratch folder outside this repository; nothing of theirs
 // is stored here. It runs their homogeneous hanging cloth (every yarn Yarn1, plain weave,
-// upright pose, two top corners on penalty springs, wind along +y, h = 1 ms, implicit Euler
-// with their own assembly and linear solver) and writes, as CSV:
+// upright pose, two top corners on penalty springs, wind along +y, implicit Euler with their
+// own assembly; h = 1 ms and their own linear solver unless told otherwise) and writes, as CSV:
 //   trajectory.csv  step,time_s,i,j,x,y,z,u,v,vx,vy,vz,udot,vdot,u_anchor,v_anchor
 //                   every step (the sliding columns are empty on the ring)
 //   forces.csv      step,term,i,j,fx,fy,fz,fu,fv     each term's generalized force at the
@@ -13,13 +13,19 @@
 //                   random direction of one block of DoFs (wrt: x, uv, vx, vuv) against central
 //                   differences of their own force (rows: x or uv), at the requested steps
 //   solver.csv      step,relative_residual          ||A v1 - b|| / ||b|| of each step's solve
-// Usage: published_driver OUT_DIR SIZE STEPS HEIGHT_M DUMP_STEPS(comma separated)
+// Usage: published_driver OUT_DIR SIZE STEPS HEIGHT_M DUMP_STEPS(comma separated) [STEP_S [SOLVER]]
+//   STEP_S  their h in seconds (default 0.001, their example's)
+//   SOLVER  cg (default): their EigenSolver, conjugate gradients on the non-symmetric step matrix;
+//           direct: the same system (their A and b) solved by a sparse LU of this driver's, so that
+//           the step is their linearized implicit Euler without the residual CG leaves
+#include <Eigen/SparseLU>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "PhysicsCloth.h"
 
@@ -31,13 +37,18 @@ struct Options {
   int steps = 100;
   double height_m = 5.0;
   std::set<int> dump_steps;
+  double step_s = 0.001;
+  bool direct_solve = false;
 };
 
+[[noreturn]] void usage_error(const std::string& message) {
+  std::cerr << "published_driver: " << message
+            << "\nusage: published_driver OUT_DIR SIZE STEPS HEIGHT_M DUMP_STEPS [STEP_S [cg|direct]]\n";
+  std::exit(2);
+}
+
 Options parse_options(int argc, char** argv) {
-  if (argc != 6) {
-    std::cerr << "usage: published_driver OUT_DIR SIZE STEPS HEIGHT_M DUMP_STEPS\n";
-    std::exit(2);
-  }
+  if (argc < 6 || argc > 8) usage_error("expected 5 to 7 arguments");
   Options o;
   o.out_dir = argv[1];
   o.size = std::stoi(argv[2]);
@@ -46,6 +57,13 @@ Options parse_options(int argc, char** argv) {
   std::stringstream list(argv[5]);
   for (std::string item; std::getline(list, item, ',');)
     if (!item.empty()) o.dump_steps.insert(std::stoi(item));
+  if (argc > 6) o.step_s = std::stod(argv[6]);
+  if (!(o.step_s > 0.0)) usage_error(std::string("STEP_S ") + argv[6] + ": expected a positive step in seconds");
+  if (argc > 7) {
+    const std::string solver = argv[7];
+    if (solver != "cg" && solver != "direct") usage_error("SOLVER " + solver + ": expected cg or direct");
+    o.direct_solve = solver == "direct";
+  }
   return o;
 }
 
@@ -186,6 +204,28 @@ void write_jacobian_checks(std::ofstream& out, PhysicsCloth& phy, Cloth& cloth, 
   force_at(phy, cloth, base);
 }
 
+// Their step system A v1 = b solved by a sparse LU (A is their dense step matrix, not symmetric).
+Tensor direct_solve(const Tensor& A, const Tensor& b) {
+  const Tensor a = A.contiguous();
+  const auto a_acc = a.accessor<double, 2>();
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < a.size(0); ++i)
+    for (int j = 0; j < a.size(1); ++j)
+      if (a_acc[i][j] != 0.0) entries.emplace_back(i, j, a_acc[i][j]);
+  Eigen::SparseMatrix<double> sparse(a.size(0), a.size(1));
+  sparse.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(sparse);
+  if (lu.info() != Eigen::Success) {
+    std::cerr << "published_driver: the step matrix is singular (sparse LU failed)\n";
+    std::exit(1);
+  }
+  const Tensor rhs = b.contiguous();
+  Tensor x = torch::zeros_like(rhs);
+  Eigen::Map<Eigen::VectorXd>(x.data_ptr<double>(), x.numel()) =
+      lu.solve(Eigen::Map<const Eigen::VectorXd>(rhs.data_ptr<double>(), rhs.numel()));
+  return x;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -202,7 +242,7 @@ int main(int argc, char** argv) {
   PhysicsCloth phy{&env};
   phy.InitMV();
   cloth.set_handles({{0, 0}, {o.size - 1, 0}});
-  const Tensor h = torch::tensor({0.001}, opts);
+  const Tensor h = torch::tensor({o.step_s}, opts);
 
   std::ofstream traj(o.out_dir + "/trajectory.csv"), forces(o.out_dir + "/forces.csv"),
       solver(o.out_dir + "/solver.csv"), jacobians(o.out_dir + "/jacobians.csv");
@@ -211,7 +251,7 @@ int main(int argc, char** argv) {
   forces << std::setprecision(17) << "step,term,i,j,fx,fy,fz,fu,fv\n";
   solver << std::setprecision(17) << "step,relative_residual\n";
   for (int step = 0; step < o.steps; ++step) {
-    write_state(traj, cloth, step, step * 0.001);
+    write_state(traj, cloth, step, step * o.step_s);
     phy.FillMV();
     if (o.dump_steps.count(step)) {
       write_forces(forces, phy, cloth, step);
@@ -221,12 +261,12 @@ int main(int argc, char** argv) {
     const Tensor A{phy.get_SpaM() - phy.get_SpaFPos() * torch::pow(h, 2) - phy.get_SpaFVel() * h};
     const Tensor b{h * (phy.get_SpaF() - torch::mm(phy.get_SpaFVel().transpose(0, 1), phy.get_SpaVel())) +
                    torch::mm(phy.get_SpaM(), phy.get_SpaVel())};
-    Tensor new_vel = EigenSolver::apply(A, b);
+    Tensor new_vel = o.direct_solve ? direct_solve(A, b) : EigenSolver::apply(A, b);
     solver << step << ',' << (torch::norm(torch::mm(A, new_vel) - b) / torch::norm(b)).item<double>() << '\n';
     cloth.update(new_vel, phy.F_E_is_Slides[0], h);
     phy.ResetMV();
     std::cout << "step " << step + 1 << '/' << o.steps << std::endl;
   }
-  write_state(traj, cloth, o.steps, o.steps * 0.001);
+  write_state(traj, cloth, o.steps, o.steps * o.step_s);
   return 0;
 }
