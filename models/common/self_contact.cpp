@@ -70,7 +70,12 @@ std::array<int, 4> edge_pair_key(std::array<int, 2> a, std::array<int, 2> b) {
 }  // namespace
 
 SelfContactTerm::SelfContactTerm(ContactSurface surface, double dhat, double kappa, const ContactCapsules& capsules)
-    : surface_(std::move(surface)), dhat_(dhat), radius_(capsules.radius), kernel_(dhat, kappa, 2.0 * capsules.radius) {
+    : surface_(std::move(surface)),
+      dhat_(dhat),
+      radius_(capsules.radius),
+      core_distance_(capsules.core_distance),
+      kernels_{SelfContactPairTerm(dhat, kappa, 2.0 * capsules.radius),
+               SelfContactPairTerm(dhat, kappa, capsules.core_distance)} {
   const int n = static_cast<int>(surface_.node_x.size());
   std::set<std::array<int, 2>> edges;
   for (const auto& t : surface_.triangles)
@@ -101,8 +106,10 @@ std::array<Vec3, 4> SelfContactTerm::nodes(const Pair& p, const Vec& q) const {
   return x;
 }
 
+double SelfContactTerm::contact_distance(const Pair& p) const { return p.core ? core_distance_ : 2.0 * radius_; }
+
 double SelfContactTerm::distance(const Pair& p, const Vec& q) const {
-  return closest_support(p.kind, nodes(p, q)).distance - 2.0 * radius_;
+  return closest_support(p.kind, nodes(p, q)).distance - contact_distance(p);
 }
 
 long SelfContactTerm::overlapping_pairs(const Vec& q) const {
@@ -142,8 +149,8 @@ std::vector<SelfContactTerm::Pair> SelfContactTerm::candidates(const Vec& q0, co
                            });
   CGAL::box_self_intersection_d(edges.begin(), edges.end(), [&](const Box& b0, const Box& b1) {
     const auto &e0 = edges_[b0.info()], &e1 = edges_[b1.info()];
-    if (!excluded(e0.data(), 2, e1.data(), 2) && !modelled_.count(edge_pair_key(e0, e1)))
-      out.push_back({PairKind::edge_edge, {e0[0], e0[1], e1[0], e1[1]}});
+    if (!excluded(e0.data(), 2, e1.data(), 2))
+      out.push_back({PairKind::edge_edge, {e0[0], e0[1], e1[0], e1[1]}, modelled_.count(edge_pair_key(e0, e1)) > 0});
   });
   // A fixed order, whatever order the box intersection reports them in.
   std::sort(out.begin(), out.end(), [](const Pair& a, const Pair& b) {
@@ -156,22 +163,26 @@ void SelfContactTerm::prepare(const EvalContext& ctx) {
   const Vec& q = *ctx.q;
   std::fill(force_.begin(), force_.end(), Vec3::Zero());
   std::fill(block_.begin(), block_.end(), Mat3::Zero());
-  kernel_.clear();
-  std::vector<Pair> active;
+  std::array<std::vector<Pair>, 2> active;
+  for (SelfContactPairTerm& kernel : kernels_) kernel.clear();
   for (const Pair& p : candidates(q, q, dhat_)) {
     if (!(distance(p, q) < dhat_)) continue;
     std::array<int, 12> s;
     for (int i = 0; i < 4; ++i)
       for (int c = 0; c < 3; ++c) s[3 * i + c] = surface_.node_x[p.node[i]] + c;
-    kernel_.add(s, p.kind);
-    active.push_back(p);
+    kernels_[p.core].add(s, p.kind);
+    active[p.core].push_back(p);
   }
-  for (int e = 0; e < kernel_.num_elements(); ++e) {
+  for (int which = 0; which < 2; ++which) gather(kernels_[which], active[which], q);
+}
+
+void SelfContactTerm::gather(const SelfContactPairTerm& kernel, const std::vector<Pair>& active, const Vec& q) {
+  for (int e = 0; e < kernel.num_elements(); ++e) {
     Eigen::Matrix<double, 12, 1> lq, f = Eigen::Matrix<double, 12, 1>::Zero();
     Eigen::Matrix<double, 12, 12> k = Eigen::Matrix<double, 12, 12>::Zero();
-    const auto s = kernel_.stencil(e);
+    const auto s = kernel.stencil(e);
     for (int a = 0; a < 12; ++a) lq[a] = q[s[a]];
-    kernel_.evaluate(e, lq.data(), nullptr, ElementOutput{f.data(), k.data()});
+    kernel.evaluate(e, lq.data(), nullptr, ElementOutput{f.data(), k.data()});
     // H ⪯ H⁺ ⪯ m·blockdiag(H⁺), H⁺ the positive part of H = −∂F/∂x and m its
     // non-zero node blocks (Cauchy–Schwarz): the step's stiffness bounds the pair's.
     const Eigen::Matrix<double, 12, 12> hp = positive_part<12>(-k);
@@ -194,9 +205,9 @@ double SelfContactTerm::admissible_fraction(const EvalContext& from, const EvalC
   double alpha = 1.0;
   for (const Pair& p : candidates(*from.q, *to.q, kApproachFraction * dhat_)) {
     const std::array<Vec3, 4> x0 = nodes(p, *from.q), x1 = nodes(p, *to.q);
-    const double d0 = closest_support(p.kind, x0).distance, g0 = d0 - 2.0 * radius_;
+    const double d0 = closest_support(p.kind, x0).distance, g0 = d0 - contact_distance(p);
     if (!(g0 > 0.0)) continue;  // a start in contact constrains nothing (never an accepted state)
-    const double target = 2.0 * radius_ + kApproachFraction * std::min(g0, dhat_);
+    const double target = contact_distance(p) + kApproachFraction * std::min(g0, dhat_);
     alpha = std::min(alpha, first_approach(p.kind, x0, x1, d0, target));
   }
   return alpha;
@@ -226,8 +237,8 @@ void add_self_contact(const Scene& scene, const ObstacleContactRule& rule, doubl
         << " m; expected d̂ below " << bound << " m, "
         << (closest >= node_spacing_m ? (capsules.radius > 0.0 ? "the yarn radius" : "the node spacing")
             : capsules.radius > 0.0
-                ? "the gap at which two yarn segments that share no node and that the stitch terms do not model "
-                  "start (the knit must not feel itself at rest)"
+                ? "the gap at which two yarn segments that share no node start (d − 2R, or d less the core distance "
+                  "for the pairs the compression models; the knit must not feel itself at rest)"
                 : "the distance at which two surface primitives that share no node start "
                   "(the cloth must not feel itself at rest)");
     throw std::invalid_argument(msg.str());

@@ -3,8 +3,10 @@
 // found at every evaluation by CGAL's box intersection over the primitives'
 // boxes widened by d̂/2 on every side, and continuous collision over every step's move.
 // Yarn–yarn contact of a knit (§11.10) is the same term over capsules: yarn
-// segments of radius R whose edge–edge barrier acts on the gap d − 2R, with
-// the pairs other terms already model left out (ContactCapsules).
+// segments of radius R whose edge–edge barrier acts on the gap d − 2R; the
+// pairs a penalty already models (ContactCapsules::modelled) get the barrier
+// on a smaller contact distance, their hard core, so they too never pass
+// through each other.
 //
 // The pairs couple nodes far apart in the mesh, which the model's fixed
 // sparsity pattern (docs/design.md §3.1) does not hold: this term has one
@@ -39,11 +41,13 @@ struct ContactSurface {
 
 // Yarn segments between surface nodes, as capsules of radius R (docs/models.md
 // §11.10): their edge–edge pairs act on the gap d − 2R; the segment pairs in
-// `modelled` (indices into `segments`) are left out.
+// `modelled` (indices into `segments`), whose soft contact another term
+// models, act on the gap d − core_distance instead (core_distance < 2R).
 struct ContactCapsules {
   std::vector<std::array<int, 2>> segments;
   double radius = 0.0;
   std::vector<std::array<int, 2>> modelled;
+  double core_distance = 0.0;
 };
 
 class SelfContactTerm : public StencilTerm<3> {
@@ -68,13 +72,16 @@ class SelfContactTerm : public StencilTerm<3> {
   struct Pair {
     PairKind kind;
     std::array<int, 4> node;  // surface nodes, ordered as in primitive_distance.h
+    bool core = false;        // a modelled capsule pair: its gap is taken to the core distance
   };
   // The pairs (not excluded) whose boxes, swept from q0 to q1 and widened by
   // R + margin/2 on every side, overlap.
   std::vector<Pair> candidates(const Vec& q0, const Vec& q1, double margin) const;
-  // Their gap at q: the distance less the contact distance 2R (R = 0 for a surface).
+  // Their gap at q: the distance less the pair's contact distance (2R, the
+  // core distance for a modelled pair; 0 for a surface).
   double distance(const Pair& p, const Vec& q) const;
-  // The pairs (not excluded) whose gap at q is negative: capsules that overlap.
+  // The pairs (not excluded) whose gap at q is negative: capsules that
+  // overlap, or modelled pairs whose cores overlap.
   long overlapping_pairs(const Vec& q) const;
   double radius() const { return radius_; }
 
@@ -82,13 +89,16 @@ class SelfContactTerm : public StencilTerm<3> {
 
  private:
   bool excluded(const int* a, int na, const int* b, int nb) const;
+  double contact_distance(const Pair& p) const;
+  // Adds the force and step stiffness of the kernel's elements (the pairs `active`) to their nodes.
+  void gather(const SelfContactPairTerm& kernel, const std::vector<Pair>& active, const Vec& q);
   std::array<Vec3, 4> nodes(const Pair& p, const Vec& q) const;
 
   ContactSurface surface_;
   std::vector<std::array<int, 2>> edges_;
-  std::set<std::array<int, 4>> modelled_;  // edge pairs left out, each edge's nodes sorted, the pair sorted
-  double dhat_, radius_;
-  SelfContactPairTerm kernel_;
+  std::set<std::array<int, 4>> modelled_;  // modelled edge pairs, each edge's nodes sorted, the pair sorted
+  double dhat_, radius_, core_distance_;
+  std::array<SelfContactPairTerm, 2> kernels_;  // capsule (or surface) pairs, modelled pairs' cores
   std::vector<Vec3> force_;
   std::vector<Mat3> block_;
 };

@@ -11,6 +11,7 @@ KnitContactSet knit_contact_set(const KnitGraph& graph, const std::vector<YarnPi
   for (const YarnPiece& p : pieces) set.capsules.segments.push_back({p.n0, p.n1});
   set.capsules.radius = radius;
   for (const PiecePair& p : compressed) set.capsules.modelled.push_back({p.a, p.b});
+  set.capsules.core_distance = knit_core_distance(radius);
   return set;
 }
 

@@ -2,22 +2,23 @@
 // of the lab (self_contact.h) over the knit's yarn pieces as capsules of the
 // yarn radius R, on the gap d − 2R between their centrelines. The pieces are
 // the segments between consecutive visits, a stitch segment once although two
-// yarns traverse it (compression_pairs.h). The filter leaves out the pairs that
-// other terms already model:
-//   - pieces that share a node: the neighbours along one yarn (stretch and
-//     bending hold them) and the pieces through a stitch contact (the stitch
-//     terms hold them: they meet there by construction);
-//   - the contact compression's pairs (§11.6): pieces of neighbouring loops
+// yarns traverse it (compression_pairs.h). Which gap each pair gets:
+//   - pieces that share a node are left out: the neighbours along one yarn
+//     (stretch and bending hold them) and the pieces through a stitch contact
+//     (the stitch terms hold them: they meet there by construction);
+//   - the contact compression's pairs (§11.6), pieces of neighbouring loops
 //     that pass closer than its cutoff 2R + ½ min(W, C) in the generated
-//     geometry. The compression models their contact (a penalty that lets
-//     them overlap slightly where the pattern squeezes them, as along a free
-//     course edge); a barrier on them too would stiffen the knit's calibrated
-//     response, push pressed rest shapes apart (rib's touching wales; the
-//     distortion Gomez-Nogales et al. 2025 filter neighbours out for), and
-//     hold every step of a curling edge to the barrier's stiffness.
-// Every other pair starts farther apart than the cutoff (more than d̂ for any
-// admitted d̂ < R), so the barrier is idle at the rest shape and acts only where
-// the cloth folds onto itself: between loops that are not neighbours.
+//     geometry, get the barrier on their cores, the gap d − R: the
+//     compression models their soft contact (a penalty that lets them overlap
+//     where the pattern squeezes them, as along a free course edge; a barrier
+//     on 2R too would stiffen the calibrated response and push pressed rest
+//     shapes apart), the core barrier keeps them from passing through each
+//     other (a penalty alone does not) and is idle until they overlap by
+//     more than half a diameter less d̂;
+//   - every other pair gets the gap d − 2R between the capsules. They start
+//     farther apart than the cutoff (more than d̂ for any admitted d̂ < R), so
+//     the barrier is idle at the rest shape and acts only where the cloth
+//     folds onto itself: between loops that are not neighbours.
 #pragma once
 #include <memory>
 #include <vector>
@@ -34,9 +35,12 @@ struct KnitContactSet {
 };
 
 // The contact set of an open knit: `pieces` (unique_pieces of its segments,
-// no image shifts), `compressed` the compression's pairs among them (left out).
+// no image shifts), `compressed` the compression's pairs among them (their cores in contact).
 KnitContactSet knit_contact_set(const KnitGraph& graph, const std::vector<YarnPiece>& pieces,
                                 const std::vector<PiecePair>& compressed, double radius);
+
+// The core distance of the compression's pairs: R, half the capsules' 2R.
+inline double knit_core_distance(double radius) { return radius; }
 
 // The contact rule of a knit (docs/models.md §11.10): the self-contact's rule
 // with the yarn radius R as the length scale (d̂ = R/2 unless set) and the

@@ -4,7 +4,9 @@
 // endpoint, parallel segments) on both sides of the switch between two regions
 // and down to gaps of 10⁻³ d̂; parallel overlapping segments; the assembled
 // term's force and step stiffness; two yarns fired at each other never pass
-// through one another under be-linear, be-newton and sdirk2.
+// through one another under be-linear, be-newton and sdirk2, and so do two
+// yarns whose pairs are modelled (their barrier on the core distance D_c < 2R:
+// their capsules may overlap, their cores never).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -126,11 +128,13 @@ TEST(CapsulePair, ParallelOverlappingSegmentsPushApartAlongTheirSeparation) {
 
 // Two yarns of two segments each, crossing at right angles through their
 // segments' interiors, 2 mm apart (gap 2 mm − 2R), fired at each other at
-// 1 m/s each: a 1 ms step would carry them through each other.
+// 1 m/s each: a 1 ms step would carry them through each other. With
+// `modelled` their four pairs are the modelled ones, in contact at the core
+// distance kCore.
 class TwoYarns : public test::HandBuiltModel<TwoYarns> {
  public:
-  static constexpr double kR = 2e-4, kDh = 1e-4;
-  TwoYarns() : HandBuiltModel("two-yarns") {
+  static constexpr double kR = 2e-4, kDh = 1e-4, kCore = 2e-4;
+  explicit TwoYarns(bool modelled = false) : HandBuiltModel("two-yarns") {
     num_dofs_ = 18;
     q0_.resize(18);
     v0_ = Vec::Zero(18);
@@ -143,87 +147,109 @@ class TwoYarns : public test::HandBuiltModel<TwoYarns> {
       v0_[3 * k + 2] = k < 3 ? 1.0 : -1.0;
     }
     terms_.push_back(std::make_unique<test::NodeMassTerm>(6, 1e-5));
-    terms_.push_back(std::make_unique<SelfContactTerm>(ContactSurface{{}, {0, 3, 6, 9, 12, 15}}, kDh, kKappa,
-                                                       ContactCapsules{{{0, 1}, {1, 2}, {3, 4}, {4, 5}}, kR, {}}));
+    terms_.push_back(
+        std::make_unique<SelfContactTerm>(ContactSurface{{}, {0, 3, 6, 9, 12, 15}}, kDh, kKappa, capsules(modelled)));
     finalize();
+  }
+  static ContactCapsules capsules(bool modelled) {
+    ContactCapsules c{{{0, 1}, {1, 2}, {3, 4}, {4, 5}}, kR, {}, kCore};
+    if (modelled) c.modelled = {{0, 2}, {0, 3}, {1, 2}, {1, 3}};
+    return c;
   }
 };
 
-// Smallest gap d − 2R over the 4 segment pairs of the two yarns.
-double yarn_gap(const Vec& q) {
+// Smallest distance d between the centrelines over the 4 segment pairs of the two yarns.
+double yarn_distance(const Vec& q) {
   auto x = [&](int k) { return Vec3(q.segment<3>(3 * k)); };
-  double g = 1.0;
+  double d = 1.0;
   for (int i = 0; i < 2; ++i)
     for (int j = 3; j < 5; ++j)
-      g = std::min(g, closest_support(PairKind::edge_edge, {x(i), x(i + 1), x(j), x(j + 1)}).distance);
-  return g - 2.0 * TwoYarns::kR;
+      d = std::min(d, closest_support(PairKind::edge_edge, {x(i), x(i + 1), x(j), x(j + 1)}).distance);
+  return d;
 }
 
 TEST(CapsuleSteps, YarnsFiredAtEachOtherNeverPassThrough) {
-  for (const char* name : {"be-linear", "be-newton", "sdirk2"}) {
-    TwoYarns model;
-    auto integ = make_integrator(name);
-    IntegratorOptions opt;
-    opt.dt = 1e-3;
-    integ->initialize(model, 0.0, model.initial_q(), model.initial_v(), opt);
-    double closest = 1.0;
-    bool ordered = true;
-    integ->on_step = [&](const StepRecord&) {
-      const Vec& q = integ->q();
-      closest = std::min(closest, yarn_gap(q));
-      // The crossing point of the first yarn (x = 0.3 L on its second segment) below the second's.
-      const double za = 0.7 * q[5] + 0.3 * q[8], zb = 0.7 * q[14] + 0.3 * q[11];
-      ordered = ordered && za < zb;
-    };
-    const StepResult r = integ->advance_to(0.01);
-    ASSERT_EQ(r.outcome, Outcome::ok) << name << ": " << r.message;
-    EXPECT_GT(closest, 0.0) << name;
-    EXPECT_LT(closest, TwoYarns::kDh) << name << ": they never met";
-    EXPECT_TRUE(ordered) << name;
-    EXPECT_GT(integ->stats().rejected_steps, 0) << name << ": the step was never retaken";
-    EXPECT_LT(integ->v()[5], 0.0) << name << ": the first yarn did not rebound";
-  }
+  for (bool modelled : {false, true})
+    for (const char* name : {"be-linear", "be-newton", "sdirk2"}) {
+      SCOPED_TRACE(std::string(name) + (modelled ? ", modelled pairs" : ", capsule pairs"));
+      TwoYarns model(modelled);
+      auto integ = make_integrator(name);
+      IntegratorOptions opt;
+      opt.dt = 1e-3;
+      integ->initialize(model, 0.0, model.initial_q(), model.initial_v(), opt);
+      double closest = 1.0;
+      bool ordered = true;
+      integ->on_step = [&](const StepRecord&) {
+        const Vec& q = integ->q();
+        closest = std::min(closest, yarn_distance(q));
+        // The crossing point of the first yarn (x = 0.3 L on its second segment) below the second's.
+        const double za = 0.7 * q[5] + 0.3 * q[8], zb = 0.7 * q[14] + 0.3 * q[11];
+        ordered = ordered && za < zb;
+      };
+      const StepResult r = integ->advance_to(0.01);
+      ASSERT_EQ(r.outcome, Outcome::ok) << r.message;
+      const double contact = modelled ? TwoYarns::kCore : 2.0 * TwoYarns::kR;
+      EXPECT_GT(closest, contact);
+      EXPECT_LT(closest, contact + TwoYarns::kDh) << "they never met";
+      EXPECT_TRUE(ordered);
+      EXPECT_GT(integ->stats().rejected_steps, 0) << "the step was never retaken";
+      EXPECT_LT(integ->v()[5], 0.0) << "the first yarn did not rebound";
+    }
 }
 
 // The assembled term over capsules (docs/models.md §3.11.7, §11.10): the
-// per-node force is −∇ of the summed pair energies κ b(d − 2R) (central
-// differences over the pairs the broad phase finds), and the step stiffness
-// it assembles bounds their Hessian from above, for the two yarns brought to
-// 0.3 d̂ apart and tilted, where two segment pairs are active.
+// per-node force is −∇ of the summed pair energies κ b(d − D) (D = 2R, or the
+// core distance for modelled pairs; central differences over the pairs the
+// broad phase finds), and the step stiffness it assembles bounds their
+// Hessian from above, for the two yarns brought to 0.3 d̂ from contact and
+// tilted, where two segment pairs are active.
 TEST(CapsuleTerm, ForceIsMinusTheGradientOfThePairsAndItsStiffnessBoundsTheirHessian) {
-  TwoYarns model;
-  const double dhat = TwoYarns::kDh;
-  Vec q = model.initial_q();
-  for (int k = 3; k < 6; ++k) q[3 * k + 2] -= 2e-3 - 2.0 * TwoYarns::kR - 0.3 * dhat;
-  q[11] += 0.2 * dhat;
-  q[8] -= 0.1 * dhat;
-  const Vec v = Vec::Zero(18);
-  const SelfContactTerm pairs(ContactSurface{{}, {0, 3, 6, 9, 12, 15}}, dhat, kKappa,
-                              ContactCapsules{{{0, 1}, {1, 2}, {3, 4}, {4, 5}}, TwoYarns::kR, {}});
-  auto energy = [&](const Vec& x) {
-    double e = 0.0;
-    for (const auto& p : pairs.candidates(x, x, dhat)) e += kKappa * contact_barrier(pairs.distance(p, x), dhat).b;
-    return e;
-  };
-  Evaluation at, plus, minus;
-  for (Evaluation* e : {&at, &plus, &minus}) allocate_evaluation(model, *e);
-  model.evaluate(0.0, q, v, kForce | kDfdq, at);
-  const double f_max = at.force.cwiseAbs().maxCoeff();
-  ASSERT_GT(f_max, 0.0) << "no pair is active";
-  const double h = 1e-4 * dhat;
-  Eigen::MatrixXd hessian(18, 18);
-  for (int k = 0; k < 18; ++k) {
-    Vec qp = q, qm = q;
-    qp[k] += h;
-    qm[k] -= h;
-    EXPECT_NEAR(at.force[k], -(energy(qp) - energy(qm)) / (2 * h), 1e-6 * f_max) << "DoF " << k;
-    model.evaluate(0.0, qp, v, kForce, plus);
-    model.evaluate(0.0, qm, v, kForce, minus);
-    hessian.col(k) = -(plus.force - minus.force) / (2 * h);
+  for (bool modelled : {false, true}) {
+    SCOPED_TRACE(modelled ? "modelled pairs" : "capsule pairs");
+    TwoYarns model(modelled);
+    const double dhat = TwoYarns::kDh, contact = modelled ? TwoYarns::kCore : 2.0 * TwoYarns::kR;
+    Vec q = model.initial_q();
+    for (int k = 3; k < 6; ++k) q[3 * k + 2] -= 2e-3 - contact - 0.3 * dhat;
+    q[11] += 0.2 * dhat;
+    q[8] -= 0.1 * dhat;
+    const Vec v = Vec::Zero(18);
+    const SelfContactTerm pairs(ContactSurface{{}, {0, 3, 6, 9, 12, 15}}, dhat, kKappa, TwoYarns::capsules(modelled));
+    auto energy = [&](const Vec& x) {
+      double e = 0.0;
+      for (const auto& p : pairs.candidates(x, x, dhat)) {
+        EXPECT_EQ(p.core, modelled);
+        e += kKappa * contact_barrier(pairs.distance(p, x), dhat).b;
+      }
+      return e;
+    };
+    Evaluation at, plus, minus;
+    for (Evaluation* e : {&at, &plus, &minus}) allocate_evaluation(model, *e);
+    model.evaluate(0.0, q, v, kForce | kDfdq, at);
+    const double f_max = at.force.cwiseAbs().maxCoeff();
+    ASSERT_GT(f_max, 0.0) << "no pair is active";
+    const double h = 1e-4 * dhat;
+    Eigen::MatrixXd hessian(18, 18);
+    for (int k = 0; k < 18; ++k) {
+      Vec qp = q, qm = q;
+      qp[k] += h;
+      qm[k] -= h;
+      EXPECT_NEAR(at.force[k], -(energy(qp) - energy(qm)) / (2 * h), 1e-6 * f_max) << "DoF " << k;
+      model.evaluate(0.0, qp, v, kForce, plus);
+      model.evaluate(0.0, qm, v, kForce, minus);
+      hessian.col(k) = -(plus.force - minus.force) / (2 * h);
+    }
+    const Eigen::MatrixXd bound = -Eigen::MatrixXd(at.dfdq), h_sym = 0.5 * (hessian + hessian.transpose());
+    const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(bound - h_sym).eigenvalues().minCoeff();
+    EXPECT_GE(lowest, -1e-6 * h_sym.norm());
+    // Modelled pairs 0.3 d̂ from their cores overlap as capsules and count as
+    // intersecting only once their cores do.
+    EXPECT_EQ(pairs.overlapping_pairs(q), 0);
+    if (modelled) {
+      Vec deeper = q;
+      for (int k = 3; k < 6; ++k) deeper[3 * k + 2] -= 0.5 * dhat;
+      EXPECT_GT(pairs.overlapping_pairs(deeper), 0);
+    }
   }
-  const Eigen::MatrixXd bound = -Eigen::MatrixXd(at.dfdq), h_sym = 0.5 * (hessian + hessian.transpose());
-  const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(bound - h_sym).eigenvalues().minCoeff();
-  EXPECT_GE(lowest, -1e-6 * h_sym.norm());
 }
 
 }  // namespace
