@@ -42,10 +42,11 @@ class TileBendingLaw {
   // Σ c_i t^{e_i} at the normalized strains t: value, gradient (6), Hessian (36), third derivatives (216).
   void polynomial(const double* c, const std::array<double, 6>& t, double* p, double* g, double* h,
                   double* third) const;
+  // The law of coefficients c continued beyond the box with face curvatures h_k (tile_law_continuation.h).
   void extend(const double* c, const std::array<double, 6>& rest, const std::array<double, 6>& theta, double* w,
               std::array<double, 6>* g, std::array<double, 36>* h) const;
-  double energy_scale_ = 0.0;
-  std::array<double, 6> scale_{}, lo_{}, hi_{}, rest_curvature_{};  // h_k in t (0 for the membrane strains)
+  TileLawBox<6> box_;
+  std::array<double, 6> rest_curvature_{};  // h_k in t (0 for the membrane strains)
   std::vector<Monomial> exponent_;
   std::vector<double> coefficient_;
 };

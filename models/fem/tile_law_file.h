@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "models/fem/tile_law_continuation.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -95,11 +96,11 @@ class TileMembraneLaw {
   // Derivatives of Σ c_i t^{e_i} (normalized t) at t: value, gradient, Hessian, third derivatives.
   void polynomial(const double* c, const std::array<double, 3>& t, double* p, double* g, double* h,
                   double* third) const;
-  // The extended law of coefficients c and face curvatures h_k.
+  // The law of coefficients c continued beyond the box with face curvatures h_k (tile_law_continuation.h).
   void extend(const double* c, const std::array<double, 3>& curvature, const std::array<double, 3>& m, double* w,
               std::array<double, 3>* g, std::array<double, 9>* h) const;
-  double energy_scale_ = 0.0;
-  std::array<double, 3> scale_{}, lo_{}, hi_{}, rest_curvature_{};  // h_k in t
+  TileLawBox<3> box_;
+  std::array<double, 3> rest_curvature_{};  // h_k in t
   std::vector<std::array<int, 3>> exponent_;
   std::vector<double> coefficient_;
 };
