@@ -103,6 +103,16 @@ void TileBendingLaw::evaluate_unit(int i, const std::array<double, 6>& theta, do
   extend(unit.data(), rest, theta, w, g, nullptr);
 }
 
+TileBendingLaw TileBendingLaw::restricted(const std::array<bool, 6>& strains) const {
+  TileBendingLaw part = *this;
+  for (size_t i = 0; i < exponent_.size(); ++i)
+    for (int j = 0; j < exponent_[i].num_active; ++j)
+      if (!strains[exponent_[i].active[j]]) part.coefficient_[i] = 0.0;
+  for (int k = 0; k < 6; ++k)
+    if (!strains[k]) part.rest_curvature_[k] = 0.0;  // h_k = 2c[t_k²], with t_k² dropped
+  return part;
+}
+
 std::string TileBendingLaw::name(int i) const {
   std::string n;
   for (int k = 0; k < 6; ++k) {

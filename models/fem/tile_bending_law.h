@@ -30,6 +30,9 @@ class TileBendingLaw {
   // every other to 0: ∂W_b/∂c_i (h_k = 2c[θ_k²] is linear in c too).
   void evaluate_unit(int i, const std::array<double, 6>& theta, double* w, std::array<double, 6>* g) const;
   int size() const { return static_cast<int>(exponent_.size()); }
+  // The law of the monomials whose strains all lie in `strains` (indexed as kTileLawStrainNames),
+  // every other coefficient 0; linear in the coefficients as TileMembraneLaw::restricted.
+  TileBendingLaw restricted(const std::array<bool, 6>& strains) const;
   // "curvature_warp^2*stretch_warp" for curvature monomial i.
   std::string name(int i) const;
 

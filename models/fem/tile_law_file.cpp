@@ -261,6 +261,16 @@ void TileMembraneLaw::evaluate_unit(int i, const std::array<double, 3>& m, doubl
   extend(unit.data(), curvature, m, w, g, nullptr);
 }
 
+TileMembraneLaw TileMembraneLaw::restricted(const std::array<bool, 6>& strains) const {
+  TileMembraneLaw part = *this;
+  for (size_t i = 0; i < exponent_.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (exponent_[i][k] > 0 && !strains[k]) part.coefficient_[i] = 0.0;
+  for (int k = 0; k < 3; ++k)
+    if (!strains[k]) part.rest_curvature_[k] = 0.0;  // h_k = 2c[t_k²], with t_k² dropped
+  return part;
+}
+
 std::string TileMembraneLaw::name(int i) const {
   std::string n;
   for (int k = 0; k < 3; ++k) {

@@ -89,6 +89,10 @@ class TileMembraneLaw {
   // every other to 0: ∂W_m/∂c_i, exact also outside the box (h_k = 2c[m_k²] is linear in c).
   void evaluate_unit(int i, const std::array<double, 3>& m, double* w, std::array<double, 3>* g) const;
   int size() const { return static_cast<int>(exponent_.size()); }
+  // The law of the monomials whose strains all lie in `strains` (indexed as kTileLawStrainNames),
+  // every other coefficient 0. W_m is linear in the coefficients, its continuation too, so the
+  // laws of disjoint sets of monomials sum to the law.
+  TileMembraneLaw restricted(const std::array<bool, 6>& strains) const;
   // "stretch_warp^2*shear" for membrane monomial i.
   std::string name(int i) const;
 
