@@ -4,6 +4,8 @@
 
 #include "models/core/term_model.h"
 #include "models/fem/fem_model.h"
+#include "models/fem/terms/tile_bending.h"
+#include "models/fem/terms/tile_membrane.h"
 #include "models/yarn/yarn_model.h"
 
 namespace wl {
@@ -17,15 +19,25 @@ double element_energy(const Term& term, int e, const Vec& q, const Vec& constant
   return term.energy(e, local.data());
 }
 
-// Sum of the energies of the terms named `name` at q.
-double term_energy(const TermModel& model, const std::string& name, const Vec& q) {
+// Sum of the energies of the elements of `term` at q.
+double energy_of_term(const Term& term, const Vec& q, const Vec& constants) {
   std::vector<double> local;
   double sum = 0;
-  for (const auto& term : model.terms())
-    if (term->name() == name)
-      for (int e = 0; e < term->num_elements(); ++e) sum += element_energy(*term, e, q, model.constants(), local);
+  for (int e = 0; e < term.num_elements(); ++e) sum += element_energy(term, e, q, constants, local);
   return sum;
 }
+
+// Sum of the energies of the terms named `name` at q.
+double term_energy(const TermModel& model, const std::string& name, const Vec& q) {
+  double sum = 0;
+  for (const auto& term : model.terms())
+    if (term->name() == name) sum += energy_of_term(*term, q, model.constants());
+  return sum;
+}
+
+// The strains of a tile law along each direction (kTileLawStrainNames): ε_u, κ_u; ε_v, κ_v.
+constexpr std::array<bool, 6> kWarpStrains{true, false, false, true, false, false};
+constexpr std::array<bool, 6> kWeftStrains{false, true, false, false, true, false};
 
 // Yarn level: warp and weft parts by the yarn of each element; its first two
 // nodes (stencil entries 0 and 3, the x of two neighbours on one yarn) share
@@ -63,6 +75,15 @@ EnergySplit::EnergySplit(const Model& model, const Scene& scene) {
     weft.warp_stretch_N_per_m = weft.warp_bending_N_m = 0.0;
     warp_only_ = std::make_unique<FemModel>(scene, fem->mesh(), warp);
     weft_only_ = std::make_unique<FemModel>(scene, fem->mesh(), weft);
+    for (const auto& term : fem->terms()) {
+      if (const auto* m = dynamic_cast<const TileMembraneTerm*>(term.get()))
+        tile_parts_.push_back(
+            {m->with_law(std::make_shared<const TileMembraneLaw>(m->law().restricted(kWarpStrains))),
+             m->with_law(std::make_shared<const TileMembraneLaw>(m->law().restricted(kWeftStrains)))});
+      if (const auto* b = dynamic_cast<const TileBendingTerm*>(term.get()))
+        tile_parts_.push_back({b->with_law(std::make_shared<const TileBendingLaw>(b->law().restricted(kWarpStrains))),
+                               b->with_law(std::make_shared<const TileBendingLaw>(b->law().restricted(kWeftStrains)))});
+    }
   }
 }
 
@@ -80,6 +101,11 @@ std::vector<EnergyPart> EnergySplit::parts(const Model& model, const Vec& q) con
     if (!present) continue;
     out.push_back({name, true, term_energy(warp, name, q)});
     out.push_back({name, false, term_energy(weft, name, q)});
+  }
+  const Vec& constants = dynamic_cast<const TermModel&>(model).constants();
+  for (const TileTermParts& t : tile_parts_) {
+    out.push_back({t.warp->name(), true, energy_of_term(*t.warp, q, constants)});
+    out.push_back({t.weft->name(), false, energy_of_term(*t.weft, q, constants)});
   }
   return out;
 }

@@ -6,21 +6,27 @@
 //   continuum   the triangle stretch energy and the hinge bending energy are
 //               linear in (k_warp, k_weft) (docs/models.md §6.3, §6.5), so the
 //               warp part is the energy of the same model with the weft
-//               stiffness set to 0, and the other way round.
-// The two parts sum to the term's energy. The continuum's border bars
-// (fem-border-stretch) are not split.
+//               stiffness set to 0, and the other way round;
+//   tile law    the membrane and the curvature part per triangle are linear in
+//               the law's coefficients (docs/models.md §6.9), so the warp part
+//               is the energy of the law's monomials in ε_u and κ_u alone, the
+//               weft part that of its monomials in ε_v and κ_v alone.
+// The two parts sum to the term's energy, except for the tile law, whose
+// monomials with a shear, a twist, or strains of both directions are in
+// neither. The continuum's border bars (fem-border-stretch) are not split.
 #pragma once
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "models/core/model.h"
+#include "models/core/term.h"
 #include "models/scene/scene.h"
 
 namespace wl {
 
 struct EnergyPart {
-  std::string term;  // "stretch", "bending", "fem-stretch", "fem-bending"
+  std::string term;  // "stretch", "bending", "fem-stretch", "fem-bending", "fem-tile-membrane", "fem-tile-bending"
   bool warp = true;  // the warp part (else the weft part)
   double energy_J = 0.0;
 };
@@ -36,6 +42,10 @@ class EnergySplit {
 
  private:
   std::unique_ptr<Model> warp_only_, weft_only_;  // continuum: the other direction's stiffness 0
+  struct TileTermParts {
+    std::unique_ptr<Term> warp, weft;  // a tile-law term under its warp and its weft monomials
+  };
+  std::vector<TileTermParts> tile_parts_;
 };
 
 }  // namespace wl

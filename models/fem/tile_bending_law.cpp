@@ -11,12 +11,8 @@ bool is_curvature(const std::array<int, 6>& e) { return e[3] > 0 || e[4] > 0 || 
 
 }  // namespace
 
-TileBendingLaw::TileBendingLaw(const TileLawFile& law) : energy_scale_(law.energy_scale) {
-  for (int k = 0; k < 6; ++k) {
-    scale_[k] = law.scale[k];
-    lo_[k] = law.lo[k] / law.scale[k];
-    hi_[k] = law.hi[k] / law.scale[k];
-  }
+TileBendingLaw::TileBendingLaw(const TileLawFile& law)
+    : box_(tile_law_box<6>(law.energy_scale, law.scale, law.lo, law.hi)) {
   for (const TileLawMonomial& t : law.terms) {
     if (!is_curvature(t.exponent)) continue;
     Monomial m;
@@ -29,12 +25,12 @@ TileBendingLaw::TileBendingLaw(const TileLawFile& law) : energy_scale_(law.energ
     if (m.num_active != 1 || t.exponent[m.active[0]] != 2) continue;
     rest_curvature_[m.active[0]] = 2.0 * t.coefficient;
     if (t.coefficient < 0)
-      throw FemParameterError(
-          law.source + ":" + std::to_string(t.line) + ": the bending stiffness at rest along " +
-          kTileLawStrainNames[m.active[0]] + " " +
-          std::to_string(rest_curvature_[m.active[0]] * energy_scale_ / (scale_[m.active[0]] * scale_[m.active[0]])) +
-          " N·m, expected ≥ 0 (the law's continuation beyond the sampled box, "
-          "docs/models.md §6.9)");
+      throw FemParameterError(law.source + ":" + std::to_string(t.line) + ": the bending stiffness at rest along " +
+                              kTileLawStrainNames[m.active[0]] + " " +
+                              std::to_string(rest_curvature_[m.active[0]] * box_.energy_scale /
+                                             (box_.scale[m.active[0]] * box_.scale[m.active[0]])) +
+                              " N·m, expected ≥ 0 (the law's continuation beyond the sampled box, "
+                              "docs/models.md §6.9)");
   }
 }
 
@@ -84,52 +80,12 @@ void TileBendingLaw::polynomial(const double* c, const std::array<double, 6>& t,
   }
 }
 
-// In t: E = P(p) + ∇P(p)·d + ½Σ h_k d_k², p the nearest point of the box, d = t − p
-// (the same continuation as TileMembraneLaw's, over six strains):
-//   ∂E/∂t_j = ∇P_j(p) + h_j d_j (j clamped),  ∇P_j(p) + Σ_k ∇²P_jk(p) d_k (j inside);
-//   ∂²E/∂t_i∂t_j = h_i δ_ij (both clamped), ∇²P_ij(p) (one clamped),
-//                  ∇²P_ij(p) + Σ_k ∂³P_ijk(p) d_k (both inside).
 void TileBendingLaw::extend(const double* c, const std::array<double, 6>& rest, const std::array<double, 6>& theta,
                             double* w, std::array<double, 6>* g, std::array<double, 36>* h) const {
-  std::array<double, 6> t{}, p{}, d{};
-  std::array<bool, 6> clamped{};
-  bool outside = false;
-  for (int k = 0; k < 6; ++k) {
-    t[k] = theta[k] / scale_[k];
-    p[k] = std::clamp(t[k], lo_[k], hi_[k]);
-    d[k] = t[k] - p[k];
-    clamped[k] = d[k] != 0.0;
-    outside = outside || clamped[k];
-  }
-  double P, G[6], H[36]{}, T[216];
-  polynomial(c, p, &P, G, outside || h ? H : nullptr, outside && h ? T : nullptr);
-  double e = P;
-  std::array<double, 6> ge{};
-  for (int j = 0; j < 6; ++j) {
-    ge[j] = G[j];
-    if (clamped[j]) {
-      e += G[j] * d[j] + 0.5 * rest[j] * d[j] * d[j];
-      ge[j] += rest[j] * d[j];
-    } else if (outside) {
-      for (int k = 0; k < 6; ++k) ge[j] += H[6 * j + k] * d[k];
-    }
-  }
-  *w = energy_scale_ * e;
-  if (g)
-    for (int j = 0; j < 6; ++j) (*g)[j] = energy_scale_ * ge[j] / scale_[j];
-  if (!h) return;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j) {
-      double x;
-      if (clamped[i] && clamped[j]) x = i == j ? rest[i] : 0.0;
-      else if (clamped[i] || clamped[j]) x = H[6 * i + j];
-      else {
-        x = H[6 * i + j];
-        if (outside)
-          for (int k = 0; k < 6; ++k) x += T[36 * i + 6 * j + k] * d[k];
-      }
-      (*h)[6 * i + j] = energy_scale_ * x / (scale_[i] * scale_[j]);
-    }
+  auto p = [&](const std::array<double, 6>& t, double* v, double* gt, double* ht, double* third) {
+    polynomial(c, t, v, gt, ht, third);
+  };
+  continue_tile_law<6>(box_, p, rest, theta, w, g, h);
 }
 
 void TileBendingLaw::evaluate(const std::array<double, 6>& theta, double* w, std::array<double, 6>* g,
@@ -145,6 +101,16 @@ void TileBendingLaw::evaluate_unit(int i, const std::array<double, 6>& theta, do
   const Monomial& m = exponent_[i];
   if (m.num_active == 1 && m.exponent[m.active[0]] == 2) rest[m.active[0]] = 2.0;
   extend(unit.data(), rest, theta, w, g, nullptr);
+}
+
+TileBendingLaw TileBendingLaw::restricted(const std::array<bool, 6>& strains) const {
+  TileBendingLaw part = *this;
+  for (size_t i = 0; i < exponent_.size(); ++i)
+    for (int j = 0; j < exponent_[i].num_active; ++j)
+      if (!strains[exponent_[i].active[j]]) part.coefficient_[i] = 0.0;
+  for (int k = 0; k < 6; ++k)
+    if (!strains[k]) part.rest_curvature_[k] = 0.0;  // h_k = 2c[t_k²], with t_k² dropped
+  return part;
 }
 
 std::string TileBendingLaw::name(int i) const {

@@ -30,6 +30,9 @@ class TileBendingLaw {
   // every other to 0: ∂W_b/∂c_i (h_k = 2c[θ_k²] is linear in c too).
   void evaluate_unit(int i, const std::array<double, 6>& theta, double* w, std::array<double, 6>* g) const;
   int size() const { return static_cast<int>(exponent_.size()); }
+  // The law of the monomials whose strains all lie in `strains` (indexed as kTileLawStrainNames),
+  // every other coefficient 0; linear in the coefficients as TileMembraneLaw::restricted.
+  TileBendingLaw restricted(const std::array<bool, 6>& strains) const;
   // "curvature_warp^2*stretch_warp" for curvature monomial i.
   std::string name(int i) const;
 
@@ -42,10 +45,11 @@ class TileBendingLaw {
   // Σ c_i t^{e_i} at the normalized strains t: value, gradient (6), Hessian (36), third derivatives (216).
   void polynomial(const double* c, const std::array<double, 6>& t, double* p, double* g, double* h,
                   double* third) const;
+  // The law of coefficients c continued beyond the box with face curvatures h_k (tile_law_continuation.h).
   void extend(const double* c, const std::array<double, 6>& rest, const std::array<double, 6>& theta, double* w,
               std::array<double, 6>* g, std::array<double, 36>* h) const;
-  double energy_scale_ = 0.0;
-  std::array<double, 6> scale_{}, lo_{}, hi_{}, rest_curvature_{};  // h_k in t (0 for the membrane strains)
+  TileLawBox<6> box_;
+  std::array<double, 6> rest_curvature_{};  // h_k in t (0 for the membrane strains)
   std::vector<Monomial> exponent_;
   std::vector<double> coefficient_;
 };

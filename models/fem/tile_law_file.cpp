@@ -178,12 +178,8 @@ TileLawFile read_tile_law_file(const std::string& path) {
   return parse_tile_law(s.str(), path);
 }
 
-TileMembraneLaw::TileMembraneLaw(const TileLawFile& law) : energy_scale_(law.energy_scale) {
-  for (int k = 0; k < 3; ++k) {
-    scale_[k] = law.scale[k];
-    lo_[k] = law.lo[k] / law.scale[k];
-    hi_[k] = law.hi[k] / law.scale[k];
-  }
+TileMembraneLaw::TileMembraneLaw(const TileLawFile& law)
+    : box_(tile_law_box<3>(law.energy_scale, law.scale, law.lo, law.hi)) {
   for (const TileLawMonomial& t : law.terms) {
     if (t.exponent[3] || t.exponent[4] || t.exponent[5]) continue;  // a curvature: not in the membrane
     exponent_.push_back({t.exponent[0], t.exponent[1], t.exponent[2]});
@@ -197,7 +193,7 @@ TileMembraneLaw::TileMembraneLaw(const TileLawFile& law) : energy_scale_(law.ene
     if (!(rest_curvature_[k] > 0))
       fail(law.source, 0,
            std::string("the membrane law's stiffness at rest along ") + kTileLawStrainNames[k] + " " +
-               std::to_string(rest_curvature_[k] * energy_scale_ / (scale_[k] * scale_[k])),
+               std::to_string(rest_curvature_[k] * box_.energy_scale / (box_.scale[k] * box_.scale[k])),
            "> 0 (a row " + std::string(kTileLawStrainNames[k]) + "^2 with a positive coefficient)");
   }
 }
@@ -242,53 +238,12 @@ void TileMembraneLaw::polynomial(const double* c, const std::array<double, 3>& t
   }
 }
 
-// In t: E = P(p) + ∇P(p)·d + ½Σ h_k d_k², p the nearest point of the box, d = t − p (docs/models.md §6.9):
-//   ∂E/∂t_j = ∇P_j(p) + h_j d_j (j clamped),  ∇P_j(p) + Σ_k ∇²P_jk(p) d_k (j inside);
-//   ∂²E/∂t_i∂t_j = h_i δ_ij (both clamped), ∇²P_ij(p) (one clamped),
-//                  ∇²P_ij(p) + Σ_k ∂³P_ijk(p) d_k (both inside).
 void TileMembraneLaw::extend(const double* c, const std::array<double, 3>& curvature, const std::array<double, 3>& m,
                              double* w, std::array<double, 3>* g, std::array<double, 9>* h) const {
-  std::array<double, 3> t{}, p{}, d{};
-  std::array<bool, 3> clamped{};
-  bool outside = false;
-  for (int k = 0; k < 3; ++k) {
-    t[k] = m[k] / scale_[k];
-    p[k] = std::clamp(t[k], lo_[k], hi_[k]);
-    d[k] = t[k] - p[k];
-    clamped[k] = d[k] != 0.0;
-    outside = outside || clamped[k];
-  }
-  double P, G[3], H[9]{}, T[27]{};
-  const bool need_h = outside || h;
-  polynomial(c, p, &P, G, need_h ? H : nullptr, outside && h ? T : nullptr);
-  double e = P;
-  std::array<double, 3> ge{};
-  for (int j = 0; j < 3; ++j) {
-    ge[j] = G[j];
-    if (clamped[j]) {
-      e += G[j] * d[j] + 0.5 * curvature[j] * d[j] * d[j];
-      ge[j] += curvature[j] * d[j];
-    } else {
-      if (outside)
-        for (int k = 0; k < 3; ++k) ge[j] += H[3 * j + k] * d[k];
-    }
-  }
-  *w = energy_scale_ * e;
-  if (g)
-    for (int j = 0; j < 3; ++j) (*g)[j] = energy_scale_ * ge[j] / scale_[j];
-  if (!h) return;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      double x;
-      if (clamped[i] && clamped[j]) x = i == j ? curvature[i] : 0.0;
-      else if (clamped[i] || clamped[j]) x = H[3 * i + j];
-      else {
-        x = H[3 * i + j];
-        if (outside)
-          for (int k = 0; k < 3; ++k) x += T[9 * i + 3 * j + k] * d[k];
-      }
-      (*h)[3 * i + j] = energy_scale_ * x / (scale_[i] * scale_[j]);
-    }
+  auto p = [&](const std::array<double, 3>& t, double* v, double* gt, double* ht, double* third) {
+    polynomial(c, t, v, gt, ht, third);
+  };
+  continue_tile_law<3>(box_, p, curvature, m, w, g, h);
 }
 
 void TileMembraneLaw::evaluate(const std::array<double, 3>& m, double* w, std::array<double, 3>* g,
@@ -304,6 +259,16 @@ void TileMembraneLaw::evaluate_unit(int i, const std::array<double, 3>& m, doubl
   for (int k = 0; k < 3; ++k)
     if (exponent_[i][k] == 2 && exponent_[i][(k + 1) % 3] == 0 && exponent_[i][(k + 2) % 3] == 0) curvature[k] = 2.0;
   extend(unit.data(), curvature, m, w, g, nullptr);
+}
+
+TileMembraneLaw TileMembraneLaw::restricted(const std::array<bool, 6>& strains) const {
+  TileMembraneLaw part = *this;
+  for (size_t i = 0; i < exponent_.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      if (exponent_[i][k] > 0 && !strains[k]) part.coefficient_[i] = 0.0;
+  for (int k = 0; k < 3; ++k)
+    if (!strains[k]) part.rest_curvature_[k] = 0.0;  // h_k = 2c[t_k²], with t_k² dropped
+  return part;
 }
 
 std::string TileMembraneLaw::name(int i) const {

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "models/fem/tile_law_continuation.h"
 #include "models/scene/scene.h"
 
 namespace wl {
@@ -88,6 +89,10 @@ class TileMembraneLaw {
   // every other to 0: ∂W_m/∂c_i, exact also outside the box (h_k = 2c[m_k²] is linear in c).
   void evaluate_unit(int i, const std::array<double, 3>& m, double* w, std::array<double, 3>* g) const;
   int size() const { return static_cast<int>(exponent_.size()); }
+  // The law of the monomials whose strains all lie in `strains` (indexed as kTileLawStrainNames),
+  // every other coefficient 0. W_m is linear in the coefficients, its continuation too, so the
+  // laws of disjoint sets of monomials sum to the law.
+  TileMembraneLaw restricted(const std::array<bool, 6>& strains) const;
   // "stretch_warp^2*shear" for membrane monomial i.
   std::string name(int i) const;
 
@@ -95,11 +100,11 @@ class TileMembraneLaw {
   // Derivatives of Σ c_i t^{e_i} (normalized t) at t: value, gradient, Hessian, third derivatives.
   void polynomial(const double* c, const std::array<double, 3>& t, double* p, double* g, double* h,
                   double* third) const;
-  // The extended law of coefficients c and face curvatures h_k.
+  // The law of coefficients c continued beyond the box with face curvatures h_k (tile_law_continuation.h).
   void extend(const double* c, const std::array<double, 3>& curvature, const std::array<double, 3>& m, double* w,
               std::array<double, 3>* g, std::array<double, 9>* h) const;
-  double energy_scale_ = 0.0;
-  std::array<double, 3> scale_{}, lo_{}, hi_{}, rest_curvature_{};  // h_k in t
+  TileLawBox<3> box_;
+  std::array<double, 3> rest_curvature_{};  // h_k in t
   std::vector<std::array<int, 3>> exponent_;
   std::vector<double> coefficient_;
 };

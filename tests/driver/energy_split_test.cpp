@@ -1,10 +1,16 @@
 // Warp/weft split of the stretch and bending energies (driver/energy_split.h):
 // the parts sum to the term's energy, and a deformation of the warps alone
 // (stretched and bent along u, the wefts straight and unstretched) has no weft
-// part, and the other way round, in both models.
+// part, and the other way round, in both models; with a tile law, the parts are
+// the energies of its monomials of each direction (against the hand-computed law)
+// and a deformation of one direction has no part in the other, inside the law's
+// box and beyond it.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 
@@ -13,6 +19,7 @@
 #include "models/fem/fem_model.h"
 #include "models/model_factory.h"
 #include "models/yarn/yarn_model.h"
+#include "tests/fem/tile_law_test_data.h"
 #include "tests/support/test_scenes.h"
 
 namespace wl {
@@ -91,6 +98,66 @@ TEST(EnergySplit, ADeformationOfOneDirectionHasNoPartInTheOther) {
       for (const std::string& term : {prefix + "stretch", prefix + "bending"}) {
         EXPECT_GT(parts.at(term + on), 0.0) << term;
         EXPECT_LT(parts.at(term + off), 1e-12 * parts.at(term + on)) << term;
+      }
+    }
+  }
+}
+
+// A tile law (tests/fem/tile_law_test_data.h) with monomials of the warp alone, of the weft alone,
+// a shear, a twist and couplings across the directions.
+const std::string kTileLawTerms =
+    "stretch_warp^2,0.6\nstretch_weft^2,0.4\nshear^2,0.3\nstretch_warp*stretch_weft,0.1\n"
+    "curvature_warp^2,0.1\ncurvature_weft^2,0.08\ntwist^2,0.03\nstretch_warp*curvature_warp^2,-0.03\n"
+    "curvature_warp*curvature_weft,0.02\n";
+
+struct TileLawScene {
+  std::filesystem::path law =
+      std::filesystem::temp_directory_path() / ("wl_energy_split_law_" + std::to_string(::getpid()) + ".csv");
+  Scene scene_ = scene();
+  TileLawScene() {
+    std::ofstream(law) << test::kTileLawHeader << kTileLawTerms;
+    scene_.fem.tile_law = law.string();
+  }
+  ~TileLawScene() { std::filesystem::remove(law); }
+};
+
+// Stretched in plane by 1 % along the warp (x) and 0.5 % along the weft (−z), flat: inside the
+// law's box, W = W₀(0.6 t_u² + 0.4 t_v² + 0.1 t_u t_v), t_u = 0.01/0.02, t_v = 0.005/0.02, so the
+// warp part is 0.15 W₀A, the weft part 0.025 W₀A, the coupling 0.0125 W₀A is in neither, and
+// the flat cloth has no curvature energy.
+TEST(EnergySplit, TileLawPartsAreTheMonomialsOfEachDirection) {
+  const TileLawScene t;
+  auto model = make_model(t.scene_, "fem");
+  Vec q = model->initial_q();
+  for (int x : position_dofs(*model)) {
+    q[x] *= 1.01;
+    q[x + 2] *= 1.005;
+  }
+  const EnergySplit split(*model, t.scene_);
+  const auto parts = by_quantity(split.parts(*model, q));
+  double membrane = 0;
+  for (const auto& r : dynamic_cast<TermModel&>(*model).term_readings(0.0, q, Vec::Zero(q.size())))
+    if (r.name == "fem-tile-membrane") membrane = r.energy_J;
+  const double warp = parts.at("fem-tile-membrane warp"), weft = parts.at("fem-tile-membrane weft");
+  ASSERT_GT(weft, 0.0);
+  EXPECT_NEAR(warp / weft, 0.15 / 0.025, 1e-9);
+  EXPECT_NEAR((membrane - warp - weft) / warp, 0.0125 / 0.15, 1e-9);
+  EXPECT_NEAR(parts.at("fem-tile-bending warp"), 0.0, 1e-12 * warp);
+  EXPECT_NEAR(parts.at("fem-tile-bending weft"), 0.0, 1e-12 * warp);
+}
+
+TEST(EnergySplit, ATileLawDeformationOfOneDirectionHasNoPartInTheOther) {
+  const TileLawScene t;
+  auto model = make_model(t.scene_, "fem");
+  const EnergySplit split(*model, t.scene_);
+  for (bool warp : {true, false}) {
+    SCOPED_TRACE(warp ? "warps deformed" : "wefts deformed");
+    for (double r : {0.2, 4e-3}) {  // κ inside the law's box, and beyond it
+      const auto parts = by_quantity(split.parts(*model, deform_along(*model, warp, r)));
+      const std::string on = warp ? " warp" : " weft", off = warp ? " weft" : " warp";
+      for (const std::string term : {"fem-tile-membrane", "fem-tile-bending"}) {
+        EXPECT_GT(parts.at(term + on), 0.0) << term << " r " << r;
+        EXPECT_LT(std::abs(parts.at(term + off)), 1e-12 * parts.at(term + on)) << term << " r " << r;
       }
     }
   }

@@ -21,19 +21,13 @@
 #include "models/fem/fem_material.h"
 #include "models/fem/fem_model.h"
 #include "models/fem/terms/tile_bending.h"
+#include "tests/fem/tile_law_test_data.h"
 #include "tests/support/fd_check.h"
 
 namespace wl {
 namespace {
 
-// W₀ = 1.5 J/m²; s = (0.02, 0.02, 0.5, 10, 10, 10); the box ε ∈ [−0.005, 0.02], γ ∈ [−0.5, 0.5], κ ∈ [−10, 10].
-const std::string kHeader =
-    "name,value\nenergy_scale_J_per_m2,1.5\n"
-    "scale:stretch_warp,0.02\nscale:stretch_weft,0.02\nscale:shear,0.5\n"
-    "scale:curvature_warp,10\nscale:curvature_weft,10\nscale:twist,10\n"
-    "lo:stretch_warp,-0.005\nlo:stretch_weft,-0.005\nlo:shear,-0.5\nlo:curvature_warp,-10\nlo:curvature_weft,-10\n"
-    "lo:twist,-10\nhi:stretch_warp,0.02\nhi:stretch_weft,0.02\nhi:shear,0.5\nhi:curvature_warp,10\n"
-    "hi:curvature_weft,10\nhi:twist,10\n";
+const std::string& kHeader = test::kTileLawHeader;  // tests/fem/tile_law_test_data.h
 const std::string kMembrane = "stretch_warp^2,0.6\nstretch_weft^2,0.4\nshear^2,0.3\n";
 const std::string kBending =
     "curvature_warp^2,0.1\ncurvature_weft^2,0.08\ntwist^2,0.03\nstretch_warp*curvature_warp^2,-0.03\n"

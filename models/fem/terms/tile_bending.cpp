@@ -112,6 +112,12 @@ void TileBendingTerm::evaluate(int e, const double* q, const double*, const Elem
   MatMap(out.dfdq) = -area * k;
 }
 
+std::unique_ptr<TileBendingTerm> TileBendingTerm::with_law(std::shared_ptr<const TileBendingLaw> law) const {
+  auto t = std::make_unique<TileBendingTerm>(*this);
+  t->law_ = std::move(law);
+  return t;
+}
+
 std::vector<std::string> TileBendingTerm::parameter_keys() const {
   std::vector<std::string> keys;
   for (int i = 0; i < law_->size(); ++i) keys.push_back("fem.tile_law." + law_->name(i));

@@ -40,6 +40,9 @@ class TileBendingTerm : public StencilTerm<18> {
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
   std::vector<std::string> parameter_keys() const override;
   void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
+  const TileBendingLaw& law() const { return *law_; }
+  // The same triangles under another law.
+  std::unique_ptr<TileBendingTerm> with_law(std::shared_ptr<const TileBendingLaw> law) const;
   // (κ_u, κ_v, κ_uv) of element e at local positions q (18 doubles).
   std::array<double, 3> curvature(int e, const double* q) const;
 

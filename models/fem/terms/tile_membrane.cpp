@@ -49,6 +49,12 @@ void TileMembraneTerm::evaluate(int e, const double* q, const double*, const Ele
   add_column_hessian(r, huu, huv, hvv, -r.area, out.dfdq);
 }
 
+std::unique_ptr<TileMembraneTerm> TileMembraneTerm::with_law(std::shared_ptr<const TileMembraneLaw> law) const {
+  auto t = std::make_unique<TileMembraneTerm>(*this);
+  t->law_ = std::move(law);
+  return t;
+}
+
 std::vector<std::string> TileMembraneTerm::parameter_keys() const {
   std::vector<std::string> keys;
   for (int i = 0; i < law_->size(); ++i) keys.push_back("fem.tile_law." + law_->name(i));

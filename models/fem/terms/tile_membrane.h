@@ -36,6 +36,9 @@ class TileMembraneTerm : public StencilTerm<9> {
   void evaluate(int e, const double* q, const double* v, const ElementOutput& out) const override;
   std::vector<std::string> parameter_keys() const override;
   void parameter_derivative(int e, int k, const double* q, const double* v, double* dfdp) const override;
+  const TileMembraneLaw& law() const { return *law_; }
+  // The same triangles under another law.
+  std::unique_ptr<TileMembraneTerm> with_law(std::shared_ptr<const TileMembraneLaw> law) const;
 
  private:
   std::shared_ptr<const TileMembraneLaw> law_;
