@@ -101,7 +101,9 @@ struct ModesResult {
 
 // Checks the inputs (count, a bad parameter file: FemParameterError, std::invalid_argument)
 // before anything is written; an equilibrium or eigensolve that fails is a
-// std::runtime_error after which nothing is written.
+// std::runtime_error after which nothing is written. A SIGINT or SIGTERM ends the
+// Newton iteration, settling step or eigensolve under way: modes.json with outcome
+// interrupted (driver/interrupted_record.h), then Interrupted.
 ModesResult run_modes(const ModesConfig& config);
 
 }  // namespace wl
