@@ -145,7 +145,8 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
   Json record = Json::object();
   record.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, c.overrides));
   record.set("resolution", c.time_steps.describe());
-  record.set("continuum_parameters", c.fem_params ? c.fem_params->string() : "the scene's (first guess without a file)");
+  record.set("continuum_parameters",
+             c.fem_params ? c.fem_params->string() : "the scene's (first guess without a file)");
   std::filesystem::create_directories(c.out_dir);
   CsvTable energies(c.out_dir / "energies.csv", {"time_s", "model", "quantity", "value_J"});
   EnergyLedger yarn_ledger("yarn", yarn_scene), fem_ledger("fem", fem_scene);

@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "driver/experiment_meta.h"
-#include "driver/interrupted_record.h"
 #include "driver/fidelity_reference.h"
+#include "driver/interrupted_record.h"
 #include "driver/recorded_run.h"
 #include "driver/time_error.h"
 #include "models/fem/fem_model.h"

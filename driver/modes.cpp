@@ -231,7 +231,7 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
   EquilibriumSolver equilibrium(model, {});
   EquilibriumOptions eo;
   eo.max_iterations = 200;
-  eo.atol = 1e-12;  // [N]; the weight of one crossing is ~2e-5 N
+  eo.atol = 1e-12;                      // [N]; the weight of one crossing is ~2e-5 N
   eo.stop_requested = signal_received;  // a signal: Interrupted after the solve
   lm.equilibrium = equilibrium.solve(lm.q, eo);
   throw_if_interrupted();

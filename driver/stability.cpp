@@ -181,8 +181,8 @@ StabilityResult run_stability(const StabilityConfig& cfg_in) {
         for (double mult : cfg.multipliers) {
           ++cell;
           if (cfg.progress)
-            std::fprintf(stderr, "stability [%zu/%zu]: %s %s, stretch x%g\n", cell, cells, model.c_str(),
-                         integ.c_str(), mult);
+            std::fprintf(stderr, "stability [%zu/%zu]: %s %s, stretch x%g\n", cell, cells, model.c_str(), integ.c_str(),
+                         mult);
           stage = "the cell " + model + " " + integ + " x" + csv_number(mult);
           res.rows.push_back(run_cell(cfg, model, integ, mult, table, probes));
         }

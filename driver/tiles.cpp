@@ -131,8 +131,7 @@ void fit_law(const TilesConfig& config, const std::vector<TileSample>& samples, 
   if (!config.fit) return;
   std::vector<TileSample> fitted, held_out;
   for (size_t p = 0; p < samples.size(); ++p)
-    (static_cast<int>(p % config.holdout_every) == config.holdout_every - 1 ? held_out : fitted)
-        .push_back(samples[p]);
+    (static_cast<int>(p % config.holdout_every) == config.holdout_every - 1 ? held_out : fitted).push_back(samples[p]);
   std::array<double, 6> scale{};
   for (int k = 0; k < 6; ++k) scale[k] = std::max(std::abs(config.ranges.lo[k]), std::abs(config.ranges.hi[k]));
   r.fit = fit_tile_law(fitted, scale);

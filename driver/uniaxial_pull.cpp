@@ -149,6 +149,11 @@ PullResult run_pull(const Scene& scene_in, const PullConfig& config) {
   std::vector<double> ladder{0.0};
   ladder.insert(ladder.end(), config.strains.begin(), config.strains.end());
   for (double lambda : ladder) {
+    if (signal_received()) {  // a rung whose warm start is its equilibrium asks no stop hook
+      out.interrupted_in = "the strain " + csv_number(lambda) + " rung";
+      out.complete = false;
+      break;
+    }
     // Warm start: the previous equilibrium stretched affinely from the near grip.
     const double base = mean(grips.near_x, axis), scale = (1.0 + lambda) / (1.0 + previous);
     for (int x : grips.all_x) q[x + axis] = base + (q[x + axis] - base) * scale;
