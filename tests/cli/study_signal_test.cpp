@@ -51,6 +51,9 @@ struct StudyCase {
   std::vector<std::string> tables;  // committed with their rows so far
 };
 
+// Names a case by its subcommand in the test's listing.
+void PrintTo(const StudyCase& c, std::ostream* os) { *os << c.name; }
+
 class StudySignal : public ::testing::TestWithParam<StudyCase> {
  protected:
   void SetUp() override {
