@@ -44,7 +44,7 @@ struct StudyCase {
   std::string name;               // the subcommand
   std::vector<std::string> args;  // after SCENE and "--out OUT"; "DIR/" starts a path in the scratch folder
   std::string scene;              // hanging.toml (5 × 5), large.toml (25 × 25) or knit.toml
-  std::string started;            // the progress line after which the signal is sent ("": after 0.5 s)
+  std::string started;            // the progress line after which the signal is sent ("": after 1 s)
   std::string record;             // the study's JSON
   std::string stage;              // its interrupted_in
   int signal;
@@ -97,7 +97,7 @@ TEST_P(StudySignal, EndsTheStepAndLeavesAnInterruptedRecord) {
   for (const std::string& a : c.args) args.push_back(a.rfind("DIR/", 0) == 0 ? (dir_ / a.substr(4)).string() : a);
   const pid_t pid = spawn(args);
   if (c.started.empty()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    std::this_thread::sleep_for(std::chrono::milliseconds(1000));
   } else {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (log().find(c.started) == std::string::npos && std::chrono::steady_clock::now() < deadline)
