@@ -43,14 +43,16 @@ int run(const CLI::App* diagnose, const DiagnoseArgs& a) {
   diag.out_dir = output_folder(diagnose->count("--out") ? std::optional(a.out) : std::nullopt,
                                std::filesystem::path("results/diagnose") / std::filesystem::path(a.scene).stem());
   diag.progress = !a.quiet;
-  return numerical_failure_is_exit_1("diagnose", [&] {
-    const DiagnoseResult r = run_diagnosis(diag);
-    std::fprintf(stderr,
-                 "weavelab: diagnose: distance %.3g mm mean RMS (border %.3g mm, interior %.3g mm); time error "
-                 "yarn %.3g mm, continuum %.3g mm: %s; results in %s\n",
-                 1e3 * r.mean_rms_m, 1e3 * r.border_rms_m, 1e3 * r.interior_rms_m, 1e3 * r.yarn_time_error_m,
-                 1e3 * r.fem_time_error_m, r.verdict.c_str(), diag.out_dir.string().c_str());
-    return 0;
+  return interruptible("diagnose", diag.out_dir, [&] {
+    return numerical_failure_is_exit_1("diagnose", [&] {
+      const DiagnoseResult r = run_diagnosis(diag);
+      std::fprintf(stderr,
+                   "weavelab: diagnose: distance %.3g mm mean RMS (border %.3g mm, interior %.3g mm); time error "
+                   "yarn %.3g mm, continuum %.3g mm: %s; results in %s\n",
+                   1e3 * r.mean_rms_m, 1e3 * r.border_rms_m, 1e3 * r.interior_rms_m, 1e3 * r.yarn_time_error_m,
+                   1e3 * r.fem_time_error_m, r.verdict.c_str(), diag.out_dir.string().c_str());
+      return 0;
+    });
   });
 }
 

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "driver/interrupt.h"
 #include "models/fem/fem_material.h"
 #include "models/scene/scene.h"
 #include "output/run_reader.h"
@@ -41,6 +42,18 @@ int numerical_failure_is_exit_1(const std::string& name, const std::function<int
   } catch (const std::runtime_error& e) {
     std::cerr << "weavelab: " << name << ": " << e.what() << "\n";
     return 1;
+  }
+}
+
+int interruptible(const std::string& name, const std::filesystem::path& out, const std::function<int()>& computation) {
+  install_interrupt_handlers();
+  try {
+    return computation();
+  } catch (const Interrupted& e) {
+    const int signal = interrupt_signal();
+    std::cerr << "weavelab: " << name << ": " << interrupted_message(signal) << " in " << e.stage
+              << "; the record so far in " << out.string() << "\n";
+    return interrupted_exit_code(signal);
   }
 }
 

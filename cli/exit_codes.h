@@ -3,8 +3,10 @@
 //   1    numerical failure (the outcome is in the command's summary)
 //   2    bad scene, input file or arguments, or an output folder in use
 //   3    output could not be written
-//   130 / 143 interrupted by SIGINT / SIGTERM (`run` returns these itself)
+//   130 / 143 interrupted by SIGINT / SIGTERM (`run`, `fit` and `calibrate` return
+//             these themselves; the other studies through interruptible)
 #pragma once
+#include <filesystem>
 #include <functional>
 #include <string>
 
@@ -21,5 +23,12 @@ int exit_code_of(const std::function<int()>& command);
 // std::filesystem::filesystem_error stays an output error (exit 3, exit_code_of)
 // and a SceneError bad input (exit 2).
 int numerical_failure_is_exit_1(const std::string& name, const std::function<int()>& computation);
+
+// A study that honours SIGINT and SIGTERM (driver/interrupted_record.h), once its
+// inputs are checked: installs the handlers, then runs `computation`. An
+// Interrupted from it (its record written in `out`) is "weavelab: NAME:
+// interrupted by SIGTERM in STAGE; the record so far in OUT" and exit 128 + the
+// signal; anything else passes on.
+int interruptible(const std::string& name, const std::filesystem::path& out, const std::function<int()>& computation);
 
 }  // namespace wl::cli

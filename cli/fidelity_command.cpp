@@ -104,9 +104,11 @@ int run(const CLI::App* fidelity, const FidelityArgs& a) {
   }
   // a missing or mismatched reference file is bad input: exit 2 before anything is written
   if (fid.reference_from) read_fidelity_reference(*fid.reference_from, fidelity_reference_key(fid));
-  return numerical_failure_is_exit_1("fidelity", [&] {
-    print_choice(fid, plan, run_fidelity(fid, plan));
-    return 0;
+  return interruptible("fidelity", fid.out_dir, [&] {
+    return numerical_failure_is_exit_1("fidelity", [&] {
+      print_choice(fid, plan, run_fidelity(fid, plan));
+      return 0;
+    });
   });
 }
 

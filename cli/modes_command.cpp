@@ -46,17 +46,19 @@ int run(const CLI::App* modes, const ModesArgs& a) {
   modc.out_dir = output_folder(modes->count("--out") ? std::optional(a.out) : std::nullopt,
                                std::filesystem::path("results/modes") / std::filesystem::path(a.scene).stem());
   modc.progress = !a.quiet;
-  return numerical_failure_is_exit_1("modes", [&] {
-    const ModesResult r = run_modes(modc);
-    double lowest_mac = 1.0;
-    for (const ModePair& p : r.pairs) lowest_mac = std::min(lowest_mac, p.mac);
-    std::fprintf(stderr,
-                 "weavelab: modes: equilibria %.3g mm apart (RMS over the crossings); lowest %.4g Hz (yarn), "
-                 "%.4g Hz (continuum); %zu pairs, lowest MAC %.3g; results in %s\n",
-                 1e3 * r.equilibrium_rms_m, frequency_hz(r.yarn.modes.eigenvalues.front()),
-                 frequency_hz(r.fem.modes.eigenvalues.front()), r.pairs.size(), lowest_mac,
-                 modc.out_dir.string().c_str());
-    return 0;
+  return interruptible("modes", modc.out_dir, [&] {
+    return numerical_failure_is_exit_1("modes", [&] {
+      const ModesResult r = run_modes(modc);
+      double lowest_mac = 1.0;
+      for (const ModePair& p : r.pairs) lowest_mac = std::min(lowest_mac, p.mac);
+      std::fprintf(stderr,
+                   "weavelab: modes: equilibria %.3g mm apart (RMS over the crossings); lowest %.4g Hz (yarn), "
+                   "%.4g Hz (continuum); %zu pairs, lowest MAC %.3g; results in %s\n",
+                   1e3 * r.equilibrium_rms_m, frequency_hz(r.yarn.modes.eigenvalues.front()),
+                   frequency_hz(r.fem.modes.eigenvalues.front()), r.pairs.size(), lowest_mac,
+                   modc.out_dir.string().c_str());
+      return 0;
+    });
   });
 }
 

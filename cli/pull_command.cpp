@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/exit_codes.h"
 #include "cli/options.h"
 #include "driver/run_settings.h"
 #include "driver/uniaxial_pull.h"
@@ -24,11 +25,13 @@ int run(const CLI::App* pull, const PullArgs& a) {
   pc.out_dir = output_folder(pull->count("--out") ? std::optional(a.out) : std::nullopt,
                              std::filesystem::path("results/pull") / std::filesystem::path(a.scene).stem());
   const Scene scene = load_scene(a.scene);
-  const PullResult r = pull_command(scene, pc);
-  std::fprintf(stderr, "weavelab: pull: %zu of %zu rungs, yarn length per area %.6g 1/m; results in %s%s%s\n",
-               r.points.size(), pc.strains.size() + 1, r.yarn_length_per_area_per_m, pc.out_dir.string().c_str(),
-               r.complete ? "" : "; stopped: ", r.message.c_str());
-  return r.complete ? 0 : 1;
+  return interruptible("pull", pc.out_dir, [&] {
+    const PullResult r = pull_command(scene, pc);
+    std::fprintf(stderr, "weavelab: pull: %zu of %zu rungs, yarn length per area %.6g 1/m; results in %s%s%s\n",
+                 r.points.size(), pc.strains.size() + 1, r.yarn_length_per_area_per_m, pc.out_dir.string().c_str(),
+                 r.complete ? "" : "; stopped: ", r.message.c_str());
+    return r.complete ? 0 : 1;
+  });
 }
 
 }  // namespace

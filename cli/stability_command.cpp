@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/exit_codes.h"
 #include "cli/options.h"
 #include "driver/run_settings.h"
 #include "driver/stability.h"
@@ -35,10 +36,12 @@ int run(CLI::App* st, const StabilityArgs& a) {
   c.bisections = a.bisections;
   c.speed_bound = positive_option("--speed-bound", a.speed_bound);
   c.out_dir = output_folder(st->count("--out") ? std::optional(a.experiment.out) : std::nullopt, "results/stability");
-  const auto r = run_stability(c);
-  std::cerr << "weavelab: stability: " << r.rows.size() << " cells in " << r.wall_s << " s; results in "
-            << c.out_dir.string() << "\n";
-  return 0;
+  return interruptible("stability", c.out_dir, [&] {
+    const auto r = run_stability(c);
+    std::cerr << "weavelab: stability: " << r.rows.size() << " cells in " << r.wall_s << " s; results in "
+              << c.out_dir.string() << "\n";
+    return 0;
+  });
 }
 
 }  // namespace

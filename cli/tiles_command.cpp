@@ -33,17 +33,19 @@ int run(const CLI::App* tiles, const TilesArgs& a) {
   config.fit = !a.no_fit;
   if (!scene.knit) config.ranges = default_tile_ranges(scene);
   for (const std::string& item : a.ranges) apply_tile_range(config.ranges, item, "--range");
-  return numerical_failure_is_exit_1("tiles", [&] {
-    const TilesResult r = run_tiles(scene, config);
-    std::fprintf(stderr, "weavelab: tiles: %d of %d samples converged%s", r.converged, r.samples,
-                 r.cached ? " (cached)" : "");
-    if (config.fit)
-      std::fprintf(stderr, "; law on held-out samples: energy %.3g, stress %.3g (relative RMS)", r.held_out.energy,
-                   r.held_out.stress_max);
-    std::fprintf(stderr, "; results in %s\n", config.out_dir.string().c_str());
-    // A sample that does not converge is an outcome on the record (tiles.json, the
-    // samples' `converged` column) and stays out of the fit; no sample, or no fit, fails.
-    return r.converged > 0 && (!config.fit || r.fit.converged) ? 0 : 1;
+  return interruptible("tiles", config.out_dir, [&] {
+    return numerical_failure_is_exit_1("tiles", [&] {
+      const TilesResult r = run_tiles(scene, config);
+      std::fprintf(stderr, "weavelab: tiles: %d of %d samples converged%s", r.converged, r.samples,
+                   r.cached ? " (cached)" : "");
+      if (config.fit)
+        std::fprintf(stderr, "; law on held-out samples: energy %.3g, stress %.3g (relative RMS)", r.held_out.energy,
+                     r.held_out.stress_max);
+      std::fprintf(stderr, "; results in %s\n", config.out_dir.string().c_str());
+      // A sample that does not converge is an outcome on the record (tiles.json, the
+      // samples' `converged` column) and stays out of the fit; no sample, or no fit, fails.
+      return r.converged > 0 && (!config.fit || r.fit.converged) ? 0 : 1;
+    });
   });
 }
 

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/exit_codes.h"
 #include "cli/options.h"
 #include "driver/run_settings.h"
 #include "driver/work_precision.h"
@@ -46,10 +47,12 @@ int run(CLI::App* wp, const WorkPrecisionArgs& a) {
   c.reference.progress = c.progress;
   c.out_dir =
       output_folder(wp->count("--out") ? std::optional(a.experiment.out) : std::nullopt, "results/work_precision");
-  const auto r = run_work_precision(c);
-  std::cerr << "weavelab: work-precision: " << r.rows.size() << " runs in " << r.wall_s << " s; results in "
-            << c.out_dir.string() << "\n";
-  return 0;
+  return interruptible("work-precision", c.out_dir, [&] {
+    const auto r = run_work_precision(c);
+    std::cerr << "weavelab: work-precision: " << r.rows.size() << " runs in " << r.wall_s << " s; results in "
+              << c.out_dir.string() << "\n";
+    return 0;
+  });
 }
 
 }  // namespace

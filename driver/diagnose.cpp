@@ -8,6 +8,7 @@
 
 #include "driver/energy_split.h"
 #include "driver/experiment_meta.h"
+#include "driver/interrupted_record.h"
 #include "driver/recorded_run.h"
 #include "driver/time_error.h"
 #include "models/core/term_model.h"
@@ -104,6 +105,7 @@ ModelRun run_with_ledger(const Scene& s, const std::string& side, EnergyLedger& 
   rec.progress = progress;
   rec.label = model;
   rec.step_ends = true;
+  rec.stop_at_signal = true;
   rec.on_step = [&](Model& m, double t, const Vec& q, const Vec& v) { ledger.step(m, t, q, v); };
   rec.on_frame = [&](const Frame& f) {
     ledger.frame_rows(energies);
@@ -140,12 +142,37 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
   for (const auto& [scene, side] : {std::pair{&yarn_scene, "yarn"}, std::pair{&fem_scene, "fem"}})
     (void)make_model(*scene, model_of_side(*scene, side));
 
+  Json record = Json::object();
+  record.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, c.overrides));
+  record.set("resolution", c.time_steps.describe());
+  record.set("continuum_parameters",
+             c.fem_params ? c.fem_params->string() : "the scene's (first guess without a file)");
   std::filesystem::create_directories(c.out_dir);
   CsvTable energies(c.out_dir / "energies.csv", {"time_s", "model", "quantity", "value_J"});
   EnergyLedger yarn_ledger("yarn", yarn_scene), fem_ledger("fem", fem_scene);
   CsvTable directions(c.out_dir / "energy_directions.csv", {"time_s", "model", "term", "warp_J", "weft_J"});
-  const ModelRun yarn = run_with_ledger(yarn_scene, "yarn", yarn_ledger, energies, directions, c.progress);
-  const ModelRun fem = run_with_ledger(fem_scene, "fem", fem_ledger, energies, directions, c.progress);
+  // A signal ends the stage under way at its step: the energies so far and diagnosis.json
+  // with outcome interrupted (driver/interrupted_record.h).
+  std::string stage = "the yarn-level run";
+  auto record_interruption = [&] {
+    energies.commit();
+    directions.commit();
+    mark_interrupted(record, stage);
+    record.set("created", utc_now());
+    add_provenance(record);
+    write_file_atomically(c.out_dir / "diagnosis.json", record.dump());
+    return Interrupted{stage};
+  };
+  ModelRun yarn, fem;
+  try {
+    yarn = run_with_ledger(yarn_scene, "yarn", yarn_ledger, energies, directions, c.progress);
+    stage = "the continuum run";
+    fem = run_with_ledger(fem_scene, "fem", fem_ledger, energies, directions, c.progress);
+  } catch (const Interrupted&) {
+    throw record_interruption();
+  }
+  energies.commit();
+  directions.commit();
 
   // Per crossing: its grid position (from the rest material coordinates) and distance per frame.
   const Frame& first = yarn.frames.front();
@@ -202,27 +229,31 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
     f.point_data.push_back(std::move(d));
     series.add(f);
   }
+  distance.commit();
   CsvTable by_row(c.out_dir / "rows.csv", {"row", "rms_m"});
   for (int j = 0; j < rows; ++j)
     by_row.row({std::to_string(j), csv_number(row_count[j] ? std::sqrt(row_sum[j] / row_count[j]) : NAN)});
+  by_row.commit();
 
   DiagnoseResult r;
   r.mean_rms_m = frames > 0 ? sum_rms / double(frames) : NAN;  // one frame after t = 0 is a valid run
   r.border_rms_m = border_count ? std::sqrt(border_sum / border_count) : NAN;
   r.interior_rms_m = interior_count ? std::sqrt(interior_sum / interior_count) : NAN;
 
-  Json j = Json::object();
-  j.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, c.overrides));
-  j.set("resolution", c.time_steps.describe());
-  j.set("continuum_parameters", c.fem_params ? c.fem_params->string() : "the scene's (first guess without a file)");
+  record.set("distance_mean_rms_m", r.mean_rms_m);
+  record.set("border_rms_m", r.border_rms_m);
+  record.set("interior_rms_m", r.interior_rms_m);
+  record.set("yarn_steps", yarn.run.stats.steps);
+  record.set("fem_steps", fem.run.stats.steps);
   TimeErrorEstimate ye, fe;
-  r.yarn_time_error_m = time_error_of(yarn_scene, "yarn", yarn.run, c, j, ye);
-  r.fem_time_error_m = time_error_of(fem_scene, "fem", fem.run, c, j, fe);
+  stage = "the yarn-level time error";
+  r.yarn_time_error_m = time_error_of(yarn_scene, "yarn", yarn.run, c, record, ye);
+  if (interrupt_signal()) throw record_interruption();  // the estimate ends its second run at a signal
+  stage = "the continuum time error";
+  r.fem_time_error_m = time_error_of(fem_scene, "fem", fem.run, c, record, fe);
+  if (interrupt_signal()) throw record_interruption();
   r.verdict = error_budget_verdict(r.mean_rms_m, ye, fe);
-  j.set("distance_mean_rms_m", r.mean_rms_m);
-  j.set("border_rms_m", r.border_rms_m);
-  j.set("interior_rms_m", r.interior_rms_m);
-  j.set("verdict", r.verdict);
+  record.set("verdict", r.verdict);
   std::vector<int> order(crossings);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) { return crossing_sum[a] > crossing_sum[b]; });
@@ -235,16 +266,10 @@ DiagnoseResult run_diagnosis(const DiagnoseConfig& c) {
                       .set("v_m", v0.values[n])
                       .set("rms_m", std::sqrt(crossing_sum[n] / std::max<size_t>(frames, 1))));
   }
-  j.set("farthest_crossings", std::move(farthest));
-  j.set("yarn_steps", yarn.run.stats.steps);
-  j.set("fem_steps", fem.run.stats.steps);
-  j.set("created", utc_now());
-  add_provenance(j);
-  energies.commit();
-  directions.commit();
-  distance.commit();
-  by_row.commit();
-  write_file_atomically(c.out_dir / "diagnosis.json", j.dump());
+  record.set("farthest_crossings", std::move(farthest));
+  record.set("created", utc_now());
+  add_provenance(record);
+  write_file_atomically(c.out_dir / "diagnosis.json", record.dump());
   return r;
 }
 

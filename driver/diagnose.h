@@ -52,7 +52,9 @@ struct DiagnoseResult {
 
 // Checks the inputs (a bad parameter file: FemParameterError) before anything
 // runs; a yarn-level or continuum run that does not end ok is a
-// std::runtime_error after which nothing is written.
+// std::runtime_error after which nothing is written. A SIGINT or SIGTERM ends
+// the run or time-error estimate under way at its step: the tables so far and
+// diagnosis.json with outcome interrupted (driver/interrupted_record.h), then Interrupted.
 DiagnoseResult run_diagnosis(const DiagnoseConfig& config);
 
 }  // namespace wl

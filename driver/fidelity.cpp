@@ -9,6 +9,7 @@
 
 #include "driver/experiment_meta.h"
 #include "driver/fidelity_reference.h"
+#include "driver/interrupted_record.h"
 #include "driver/recorded_run.h"
 #include "driver/time_error.h"
 #include "models/fem/fem_model.h"
@@ -116,7 +117,9 @@ RecordedRun timed_runs(const Scene& s, const std::string& model, const RecordOpt
   RecordedRun first = run_recorded(s, model, s.integrator, options, record);
   std::vector<double> cpu{first.cpu_s}, wall{first.wall_s};
   for (int i = 1; i < repeats && first.result.outcome == Outcome::ok; ++i) {
-    const RecordedRun again = run_recorded(s, model, s.integrator, options);
+    RecordOptions timing_only;
+    timing_only.stop_at_signal = true;
+    const RecordedRun again = run_recorded(s, model, s.integrator, options, timing_only);
     cpu.push_back(again.cpu_s);
     wall.push_back(again.wall_s);
   }
@@ -159,6 +162,7 @@ void add_time_error(FidelityRow& row, const Scene& s, const std::string& model, 
   if (!c.error_estimate || run.result.outcome != Outcome::ok) return;
   if (c.progress) std::fprintf(stderr, "fidelity: %s time error\n", row.variant.c_str());
   const TimeErrorEstimate e = estimate_time_error(s, model, s.integrator, scene_integrator_options(s), run);
+  throw_if_interrupted();  // the estimate ends its second run at a signal
   row.time_error_method = e.method;
   if (!e.ok()) {
     row.time_error_method += std::string(" (second run ") + to_string(e.second_run.outcome) + ")";
@@ -414,13 +418,16 @@ Json write_fidelity_csv(const std::filesystem::path& out_dir, const std::vector<
   return records;
 }
 
-// 3. Files: fidelity.csv and fidelity.json.
-void write_fidelity(const FidelityConfig& c, const FidelityPlan& p, const FidelityResult& out) {
+// 3. Files: fidelity.csv and fidelity.json; with `interrupted_in`, the rows a signal left
+// (driver/interrupted_record.h) without the choices, which need the whole ladder.
+void write_fidelity(const FidelityConfig& c, const FidelityPlan& p, const FidelityResult& out,
+                    const std::string& interrupted_in = "") {
   std::filesystem::create_directories(c.out_dir);
   Json rows = write_fidelity_csv(c.out_dir, out.rows);
   Json left_out = Json::array();
   for (const auto& [name, why] : p.left_out) left_out.push(Json::object().set("variant", name).set("reason", why));
   Json j = Json::object();
+  if (!interrupted_in.empty()) mark_interrupted(j, interrupted_in);
   j.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, c.overrides));
   j.set("scene_hash", text_hash(c.scene.text));
   j.set("reference", p.reference.name);
@@ -433,9 +440,11 @@ void write_fidelity(const FidelityConfig& c, const FidelityPlan& p, const Fideli
   j.set("repeats", c.repeats);
   j.set("timing", "cpu_s and wall_s: medians over the repeats of each run (process CPU time, all threads)");
   j.set("error_measure", "worst_frame_rms_m: the largest per-frame RMS distance to the reference crossings");
-  j.set("cheapest_within_tolerance", choice_json(out.within_tolerance, p.cloth_size_m));
-  j.set("cheapest_within_1_percent", choice_json(out.within_1_percent, p.cloth_size_m));
-  j.set("cheapest_within_5_percent", choice_json(out.within_5_percent, p.cloth_size_m));
+  if (interrupted_in.empty()) {
+    j.set("cheapest_within_tolerance", choice_json(out.within_tolerance, p.cloth_size_m));
+    j.set("cheapest_within_1_percent", choice_json(out.within_1_percent, p.cloth_size_m));
+    j.set("cheapest_within_5_percent", choice_json(out.within_5_percent, p.cloth_size_m));
+  }
   j.set("variants", std::move(rows));
   j.set("left_out", std::move(left_out));
   j.set("wall_s", out.wall_s);
@@ -459,11 +468,21 @@ FidelityResult run_fidelity(const FidelityConfig& c, const FidelityPlan& p) {
   rec.energies = true;
   rec.label = p.reference.name;
   rec.step_ends = true;  // for the Richardson time-error estimate
-  out.rows.push_back(reference_row(c, p, compared, rec, ref));
-  const long reference_steps = out.rows.front().steps;
-  if (!c.reference_only)  // every variant (none after --reference-only)
-    for (const PlannedVariant& pv : p.variants)
-      out.rows.push_back(variant_row(c, pv, compared, rec, ref, reference_steps));
+  rec.stop_at_signal = true;
+  std::string stage = "the reference " + p.reference.name;
+  try {
+    out.rows.push_back(reference_row(c, p, compared, rec, ref));
+    const long reference_steps = out.rows.front().steps;
+    if (!c.reference_only)  // every variant (none after --reference-only)
+      for (const PlannedVariant& pv : p.variants) {
+        stage = "the variant " + pv.name;
+        out.rows.push_back(variant_row(c, pv, compared, rec, ref, reference_steps));
+      }
+  } catch (const Interrupted&) {  // the rows complete so far
+    out.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    write_fidelity(c, p, out, stage);
+    throw Interrupted{stage};
+  }
   mark_front_and_choices(p, out);
   out.wall_s = std::chrono::duration<double>(Clock::now() - t0).count();
   write_fidelity(c, p, out);

@@ -103,7 +103,9 @@ struct FidelityResult {
 };
 
 // Runs the plan and writes the two files. A reference run that does not end ok
-// is a std::runtime_error; a variant that fails is a row with its outcome.
+// is a std::runtime_error; a variant that fails is a row with its outcome. A
+// SIGINT or SIGTERM ends the run under way at its step: the files with the rows
+// complete so far and outcome interrupted (driver/interrupted_record.h), then Interrupted.
 FidelityResult run_fidelity(const FidelityConfig& config, const FidelityPlan& plan);
 
 // The cheapest complete row within `tolerance` (the rule of FidelityChoice::variant);

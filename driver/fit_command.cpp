@@ -7,6 +7,7 @@
 #include "calibration/scene_parameters.h"
 #include "driver/experiment_meta.h"
 #include "driver/interrupt.h"
+#include "driver/interrupted_record.h"
 #include "driver/run_settings.h"
 #include "driver/time_error.h"
 #include "driver/time_steps.h"
@@ -70,6 +71,13 @@ Json fit_error_budget(const FitCommandConfig& c, const FitCommandPlan& p, const 
     std::fprintf(stderr, "fit: distance %.3g mm mean RMS; time error (mean RMS) fitted %.3g mm, target %.3g mm: %s\n",
                  1e3 * distance, 1e3 * fitted_error.mean_rms, 1e3 * target_error.mean_rms, verdict.c_str());
   return b;
+}
+
+// The stage of the fit a signal ended: "stage K of the fit (N frames)".
+std::string fit_stage(const TrajectoryFitResult& r) {
+  if (r.stages.empty()) return "the fit";
+  return "stage " + std::to_string(r.stages.size()) + " of the fit (" + std::to_string(r.stages.back().frames) +
+         " frames)";
 }
 
 // The configuration with the model and the growing window the plan chose (the
@@ -212,6 +220,7 @@ void write_fit(const FitCommandConfig& c, const FitCommandPlan& p, const Traject
   j.set("converged", r.converged);
   j.set("stopped_at_iteration_cap", r.at_cap);
   j.set("message", r.message);
+  if (r.interrupted) mark_interrupted(j, fit_stage(r));  // the message then names the signal
   Json window = Json::array();
   for (int stage_frames : p.window) window.push(stage_frames);
   j.set("growing_window", std::move(window));

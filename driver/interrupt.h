@@ -23,8 +23,11 @@ int interrupted_exit_code(int signal);
 
 // Thrown from a step callback to end a run after the step a signal arrived in
 // (integrators let an exception from on_step pass; the caller catches it and
-// records outcome `interrupted`).
-struct Interrupted {};
+// records outcome `interrupted`). A driver that writes the record of what was
+// reached (driver/interrupted_record.h) passes it on with `stage` naming where.
+struct Interrupted {
+  std::string stage;  // e.g. "the continuum run"; empty until a driver names it
+};
 // Throws Interrupted when a signal was recorded.
 void throw_if_interrupted();
 

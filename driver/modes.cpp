@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "driver/experiment_meta.h"
+#include "driver/interrupted_record.h"
 #include "integrators/integrator.h"
 #include "models/common/self_contact.h"
 #include "models/fem/fem_material.h"
@@ -137,6 +138,7 @@ std::optional<Vec> settle(Model& model, const Vec& q, std::string& how) {
     auto be = make_integrator("be-linear");
     IntegratorOptions io;
     io.dt = h;
+    be->on_step = [](const StepRecord&) { throw_if_interrupted(); };
     be->initialize(model, 0.0, q, Vec::Zero(model.num_dofs()), io);
     const StepResult sr = be->advance_to(kSettleTime);
     char text[160];
@@ -169,6 +171,7 @@ SparseMatrix finite_difference_stiffness(Model& model, const Vec& q, double& out
   Vec plus, qh = q;
   for (int j = 0; j < n; ++j) {
     const double h = 1e-6 * std::max(1e-3, std::abs(q[j]));  // positions ~1e-2 m, sliding coordinates ~1e-2 m
+    throw_if_interrupted();
     qh[j] = q[j] + h;
     model.evaluate(0.0, qh, zero, kForce, e);
     plus = e.force;
@@ -228,8 +231,10 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
   EquilibriumSolver equilibrium(model, {});
   EquilibriumOptions eo;
   eo.max_iterations = 200;
-  eo.atol = 1e-12;  // [N]; the weight of one crossing is ~2e-5 N
+  eo.atol = 1e-12;                      // [N]; the weight of one crossing is ~2e-5 N
+  eo.stop_requested = signal_received;  // a signal: Interrupted after the solve
   lm.equilibrium = equilibrium.solve(lm.q, eo);
+  throw_if_interrupted();
   lm.route = "Newton from the rest state";
   if (!lm.equilibrium.converged) {
     const std::string first = lm.equilibrium.message;
@@ -241,6 +246,7 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
     }
     lm.q = *settled;
     lm.equilibrium = equilibrium.solve(lm.q, eo);
+    throw_if_interrupted();
     lm.route = how + " from rest, then Newton (Newton from rest: " + first + ")";
     if (!lm.equilibrium.converged) return lm;
   }
@@ -265,6 +271,7 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
   }
   lm.q = *settled;
   lm.equilibrium = equilibrium.solve(lm.q, eo);
+  throw_if_interrupted();
   char lean[160];
   std::snprintf(lean, sizeof lean,
                 "; the planar hang is unstable (lowest %.4g Hz): leaned %g m out of plane at the bottom row, ",
@@ -273,6 +280,25 @@ LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& cross
   if (lm.equilibrium.converged) linearize(model, crossings, options, fd_check, lm);
   return lm;
 }
+
+namespace {
+
+// modes.json of a run a signal ended in `stage` (driver/interrupted_record.h), with the
+// yarn level's equilibrium and modes when they were reached; the Interrupted to pass on.
+Interrupted interrupted_modes(const ModesConfig& c, const std::string& stage, const ModesResult& r) {
+  Json j = Json::object();
+  mark_interrupted(j, stage);
+  j.set("scene", scene_json(c.scene_path, c.scene.text, c.scene, {}));
+  j.set("continuum_parameters", c.fem_params ? c.fem_params->string() : "the scene's (first guess without a file)");
+  if (!r.yarn.modes.eigenvalues.empty()) j.set("yarn", model_json(r.yarn, static_cast<int>(r.yarn.q.size())));
+  j.set("created", utc_now());
+  add_provenance(j);
+  std::filesystem::create_directories(c.out_dir);
+  write_file_atomically(c.out_dir / "modes.json", j.dump());
+  return Interrupted{stage};
+}
+
+}  // namespace
 
 ModesResult run_modes(const ModesConfig& c) {
   const Scene yarn_scene = modal_scene(c.scene);
@@ -298,7 +324,12 @@ ModesResult run_modes(const ModesConfig& c) {
     if (c.progress)
       std::fprintf(stderr, "modes: %s model (%d DoFs): equilibrium, K, %d modes\n", model->name().c_str(),
                    model->num_dofs(), c.count);
-    *out = linearized_modes(*model, crossings, options, c.lean_m, c.fd_check);
+    try {
+      *out = linearized_modes(*model, crossings, options, c.lean_m, c.fd_check);
+      throw_if_interrupted();  // a signal during the eigensolve
+    } catch (const Interrupted&) {
+      throw interrupted_modes(c, model->name() == "fem" ? "the continuum's modes" : "the yarn level's modes", r);
+    }
     if (!out->equilibrium.converged)
       throw std::runtime_error("no " + model->name() + " equilibrium: " + out->equilibrium.message);
     if (!out->modes.ok) throw std::runtime_error(model->name() + " modes: " + out->modes.message);

@@ -77,6 +77,8 @@ int crossing_position_dof(const Model& model, const NodeRef& node);
 // the cloth is leaned out of plane by lean_m at its bottom row (in proportion
 // to the row), settled by backward Euler and solved again by Newton.
 // With fd_check, also K by central differences of the full force (StiffnessCheck).
+// After a SIGINT or SIGTERM it throws Interrupted at its Newton iteration,
+// settling step or finite-difference column.
 LinearizedModes linearized_modes(Model& model, const std::vector<NodeRef>& crossings, const ModalOptions& options,
                                  double lean_m = 0.0, bool fd_check = false);
 
@@ -101,7 +103,9 @@ struct ModesResult {
 
 // Checks the inputs (count, a bad parameter file: FemParameterError, std::invalid_argument)
 // before anything is written; an equilibrium or eigensolve that fails is a
-// std::runtime_error after which nothing is written.
+// std::runtime_error after which nothing is written. A SIGINT or SIGTERM ends the
+// Newton iteration, settling step or eigensolve under way: modes.json with outcome
+// interrupted (driver/interrupted_record.h), then Interrupted.
 ModesResult run_modes(const ModesConfig& config);
 
 }  // namespace wl

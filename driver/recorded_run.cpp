@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "driver/interrupt.h"
 #include "models/model_factory.h"
 
 namespace wl {
@@ -70,6 +71,7 @@ RecordedRun run_recorded(const Scene& scene, const std::string& model_name, cons
                      scene.duration_s, integrator->stats().steps, std::chrono::duration<double>(now - start).count());
       }
     }
+    if (record.stop_at_signal) throw_if_interrupted();
   };
 
   timed([&] { integrator->initialize(*model, 0.0, model->initial_q(), model->initial_v(), opt); });

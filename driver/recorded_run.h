@@ -58,6 +58,8 @@ struct RecordOptions {
   std::function<void(Model&, double t, const Vec& q, const Vec& v)> on_step;
   bool energies = false;   // fill RecordedRun::kinetic_J and potential_J
   bool step_ends = false;  // fill RecordedRun::step_ends
+  // Throw Interrupted (driver/interrupt.h) after the step a SIGINT or SIGTERM arrived in.
+  bool stop_at_signal = false;
   // Step ends to take one fixed step each, in increasing order and holding every
   // output time (a replay of a recorded step sequence; the integrator must
   // declare replays_steps). Empty: the integrator chooses its steps.

@@ -122,6 +122,7 @@ Reference load_or_compute_reference(const Scene& scene, const std::string& scene
     RecordOptions rec;
     rec.progress = options.progress;
     rec.label = "reference " + model_name;
+    rec.stop_at_signal = true;
     RecordedRun run = run_recorded(scene, model_name, options.integrator, opt, rec);
     std::string attempt = "rtol=" + format_g(rtol) + ": " + to_string(run.result.outcome);
     if (!run.result.message.empty()) attempt += ": " + run.result.message;

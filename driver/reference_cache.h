@@ -42,7 +42,8 @@ std::string reference_key(const std::string& scene_text, const std::string& mode
 // Reads <cache_dir>/<hash>.bin when it exists and holds the same key, output
 // times, 3 rows per point of the model's frame and finite values; otherwise runs `options.integrator` at each rtol in
 // turn until one ends ok, and writes the file atomically. Throws std::runtime_error when no tolerance converges (naming
-// every attempt). `scene` must be the scene the text and overrides describe.
+// every attempt). A SIGINT or SIGTERM ends a run at its step: Interrupted, nothing written.
+// `scene` must be the scene the text and overrides describe.
 Reference load_or_compute_reference(const Scene& scene, const std::string& scene_text, const std::string& model_name,
                                     const std::map<std::string, std::string>& overrides,
                                     const ReferenceOptions& options = {});

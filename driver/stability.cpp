@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "driver/experiment_meta.h"
+#include "driver/interrupted_record.h"
 #include "driver/recorded_run.h"
 #include "driver/scene_scaling.h"
 #include "models/model_factory.h"
@@ -58,6 +59,7 @@ StabilityProbe probe_cell(const StabilityConfig& cfg, const Scene& scene, double
   RecordOptions rec;
   rec.speed_bound = cfg.speed_bound;
   rec.progress = cfg.progress;
+  rec.stop_at_signal = true;
   rec.label = model + " " + integ + " x" + csv_number(mult) + " dt " + csv_number(dt);
   RecordedRun run = run_recorded(scene, model, integ, opt, rec);
   StabilityProbe p;
@@ -117,9 +119,12 @@ StabilityRow run_cell(const StabilityConfig& cfg, const std::string& model, cons
   return row;
 }
 
-void write_stability_json(const StabilityConfig& cfg, const StabilityResult& res, const std::string& started) {
+// stability.json; with `interrupted_in`, of the cells a signal left (driver/interrupted_record.h).
+void write_stability_json(const StabilityConfig& cfg, const StabilityResult& res, const std::string& started,
+                          const std::string& interrupted_in = "") {
   Json j = Json::object();
   j.set("experiment", "stability");
+  if (!interrupted_in.empty()) mark_interrupted(j, interrupted_in);
   j.set("scene", scene_json(cfg.scene_path, cfg.scene_text, cfg.scene, cfg.overrides));
   Json p = Json::object();
   p.set("models", Json(cfg.models));
@@ -169,19 +174,26 @@ StabilityResult run_stability(const StabilityConfig& cfg_in) {
   StabilityResult res;
   const size_t cells = cfg.models.size() * cfg.integrators.size() * cfg.multipliers.size();
   size_t cell = 0;
-  for (const std::string& model : cfg.models)
-    for (const std::string& integ : cfg.integrators)
-      for (double mult : cfg.multipliers) {
-        ++cell;
-        if (cfg.progress)
-          std::fprintf(stderr, "stability [%zu/%zu]: %s %s, stretch x%g\n", cell, cells, model.c_str(), integ.c_str(),
-                       mult);
-        res.rows.push_back(run_cell(cfg, model, integ, mult, table, probes));
-      }
+  std::string stage, interrupted_in;
+  try {
+    for (const std::string& model : cfg.models)
+      for (const std::string& integ : cfg.integrators)
+        for (double mult : cfg.multipliers) {
+          ++cell;
+          if (cfg.progress)
+            std::fprintf(stderr, "stability [%zu/%zu]: %s %s, stretch x%g\n", cell, cells, model.c_str(), integ.c_str(),
+                         mult);
+          stage = "the cell " + model + " " + integ + " x" + csv_number(mult);
+          res.rows.push_back(run_cell(cfg, model, integ, mult, table, probes));
+        }
+  } catch (const Interrupted&) {  // the record of the cells and probes complete so far
+    interrupted_in = stage;
+  }
   table.commit();
   probes.commit();
   res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_stability_json(cfg, res, started);
+  write_stability_json(cfg, res, started, interrupted_in);
+  if (!interrupted_in.empty()) throw Interrupted{interrupted_in};
   return res;
 }
 

@@ -52,7 +52,10 @@ struct StabilityResult {
 std::vector<std::string> default_stability_integrators();
 
 // Runs the experiment and writes the CSVs and JSON. Throws
-// std::invalid_argument for unknown names or bad bounds (before any run).
+// std::invalid_argument for unknown names or bad bounds (before any run). A
+// SIGINT or SIGTERM ends the probe under way at its step: the files with the cells
+// and probes complete so far and outcome interrupted (driver/interrupted_record.h),
+// then Interrupted.
 StabilityResult run_stability(const StabilityConfig& config);
 
 }  // namespace wl

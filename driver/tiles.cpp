@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "driver/experiment_meta.h"
+#include "driver/interrupted_record.h"
 #include "output/atomic_file.h"
 #include "output/json_writer.h"
 
@@ -28,22 +29,30 @@ void check_tiles_config(const Scene& scene, const TilesConfig& config) {
                                 "samples, " + std::to_string(fitted) + " are fitted (more samples, or --no-fit)");
 }
 
-// The samples of the design: from the cache when it holds them, else relaxed and cached.
+// The samples of the design: from the cache when it holds them, else relaxed and cached
+// (r.samples counts them as they go). A signal ends the sampling before its next sample:
+// Interrupted, no cache written.
 std::vector<TileSample> sample_tiles(const Scene& scene, const TilesConfig& config, TilesResult& r) {
   const std::string key = tile_fabric_key(scene, config.ranges, config.samples, config.seed);
-  r.samples_file = config.out_dir / tile_cache_name(key);
-  if (auto cached = read_tile_samples(r.samples_file, key)) {
+  const std::filesystem::path file = config.out_dir / tile_cache_name(key);
+  if (auto cached = read_tile_samples(file, key)) {
     r.cached = true;
+    r.samples_file = file;
     return *cached;
   }
   const auto wall0 = std::chrono::steady_clock::now();
   const std::clock_t cpu0 = std::clock();
   std::vector<TileSample> samples;
-  for (const MacroStrain& theta : latin_hypercube(config.ranges, config.samples, config.seed))
+  for (const MacroStrain& theta : latin_hypercube(config.ranges, config.samples, config.seed)) {
+    throw_if_interrupted();
     samples.push_back(relax_tile(scene, theta));
+    r.samples = static_cast<int>(samples.size());
+    r.converged += samples.back().converged;
+  }
   r.sampling_cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   r.sampling_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  write_tile_samples(r.samples_file, key, samples);
+  write_tile_samples(file, key, samples);
+  r.samples_file = file;
   return samples;
 }
 
@@ -58,8 +67,11 @@ Json errors_json(const TileLawErrors& e) {
   return j;
 }
 
-std::string tiles_json(const Scene& scene, const TilesConfig& config, const TilesResult& r) {
+// tiles.json; with `interrupted_in`, of the samples a signal left (driver/interrupted_record.h).
+std::string tiles_json(const Scene& scene, const TilesConfig& config, const TilesResult& r,
+                       const std::string& interrupted_in = "") {
   Json j = Json::object();
+  if (!interrupted_in.empty()) mark_interrupted(j, interrupted_in);
   j.set("scene", scene.source);
   const WovenTileSize size = woven_tile_size(scene);
   j.set("tile", std::to_string(size.nu) + " x " + std::to_string(size.nv));
@@ -71,13 +83,15 @@ std::string tiles_json(const Scene& scene, const TilesConfig& config, const Tile
   j.set("seed", static_cast<std::int64_t>(config.seed));
   j.set("samples", r.samples);
   j.set("converged", r.converged);
-  j.set("samples_file", r.samples_file.filename().string());
-  j.set("cached", r.cached);
-  if (!r.cached) {
+  if (!r.samples_file.empty()) {  // the samples are whole (a signal may end the sampling)
+    j.set("samples_file", r.samples_file.filename().string());
+    j.set("cached", r.cached);
+  }
+  if (!r.samples_file.empty() && !r.cached) {
     j.set("sampling_wall_s", r.sampling_wall_s);
     j.set("sampling_cpu_s", r.sampling_cpu_s);
   }
-  if (config.fit) {
+  if (config.fit && interrupted_in.empty()) {
     Json fit = Json::object();
     fit.set("basis_size", kTileLawBasisSize);
     fit.set("holdout_every", config.holdout_every);
@@ -111,6 +125,23 @@ std::string held_out_csv(const TileLaw& law, const std::vector<TileSample>& held
   return s.str();
 }
 
+// The law fitted to the samples not held out, measured on both sets, and its files.
+// A signal during the fit: Interrupted, no law written.
+void fit_law(const TilesConfig& config, const std::vector<TileSample>& samples, TilesResult& r) {
+  if (!config.fit) return;
+  std::vector<TileSample> fitted, held_out;
+  for (size_t p = 0; p < samples.size(); ++p)
+    (static_cast<int>(p % config.holdout_every) == config.holdout_every - 1 ? held_out : fitted).push_back(samples[p]);
+  std::array<double, 6> scale{};
+  for (int k = 0; k < 6; ++k) scale[k] = std::max(std::abs(config.ranges.lo[k]), std::abs(config.ranges.hi[k]));
+  r.fit = fit_tile_law(fitted, scale);
+  throw_if_interrupted();
+  r.fitted = tile_law_errors(r.fit.law, fitted);
+  r.held_out = tile_law_errors(r.fit.law, held_out);
+  write_file_atomically(config.out_dir / "tile_law.csv", tile_law_csv(r.fit.law, config.ranges));
+  write_file_atomically(config.out_dir / "held_out.csv", held_out_csv(r.fit.law, held_out));
+}
+
 }  // namespace
 
 std::string tile_law_csv(const TileLaw& law, const TileRanges& ranges) {
@@ -130,21 +161,17 @@ TilesResult run_tiles(const Scene& scene, const TilesConfig& config) {
   check_tiles_config(scene, config);
   std::filesystem::create_directories(config.out_dir);
   TilesResult r;
-  const std::vector<TileSample> samples = sample_tiles(scene, config, r);
-  r.samples = static_cast<int>(samples.size());
-  for (const TileSample& s : samples) r.converged += s.converged;
-  if (config.fit) {
-    std::vector<TileSample> fitted, held_out;
-    for (size_t p = 0; p < samples.size(); ++p)
-      (static_cast<int>(p % config.holdout_every) == config.holdout_every - 1 ? held_out : fitted)
-          .push_back(samples[p]);
-    std::array<double, 6> scale{};
-    for (int k = 0; k < 6; ++k) scale[k] = std::max(std::abs(config.ranges.lo[k]), std::abs(config.ranges.hi[k]));
-    r.fit = fit_tile_law(fitted, scale);
-    r.fitted = tile_law_errors(r.fit.law, fitted);
-    r.held_out = tile_law_errors(r.fit.law, held_out);
-    write_file_atomically(config.out_dir / "tile_law.csv", tile_law_csv(r.fit.law, config.ranges));
-    write_file_atomically(config.out_dir / "held_out.csv", held_out_csv(r.fit.law, held_out));
+  std::string stage = "the tile samples";
+  try {
+    const std::vector<TileSample> samples = sample_tiles(scene, config, r);
+    r.samples = static_cast<int>(samples.size());
+    r.converged = 0;
+    for (const TileSample& s : samples) r.converged += s.converged;
+    stage = "the law's fit";
+    fit_law(config, samples, r);
+  } catch (const Interrupted&) {
+    write_file_atomically(config.out_dir / "tiles.json", tiles_json(scene, config, r, stage));
+    throw Interrupted{stage};
   }
   write_file_atomically(config.out_dir / "tiles.json", tiles_json(scene, config, r));
   return r;

@@ -39,7 +39,9 @@ std::string tile_law_csv(const TileLaw& law, const TileRanges& ranges);
 std::string tile_cache_name(const std::string& key);
 // Checks the options (std::invalid_argument naming the option: exit 2), then
 // samples (or reads the cache), fits and writes tile_samples_*.csv, tile_law.csv
-// and tiles.json into out_dir.
+// and tiles.json into out_dir. A SIGINT or SIGTERM ends the sampling before its next
+// sample (no cache written) or the fit: tiles.json with outcome interrupted
+// (driver/interrupted_record.h), then Interrupted.
 TilesResult run_tiles(const Scene& scene, const TilesConfig& config);
 
 }  // namespace wl

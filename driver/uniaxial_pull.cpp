@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "calibration/equilibrium.h"
+#include "driver/interrupted_record.h"
 #include "models/knit/knit_model.h"
 #include "models/knit/knit_rest_shape.h"
 #include "models/model_factory.h"
@@ -86,6 +87,7 @@ std::string pull_json(const Scene& scene, const PullConfig& config, const PullRe
   j.set("yarn_length_per_area_per_m", r.yarn_length_per_area_per_m);
   j.set("complete", r.complete);
   j.set("message", r.message);
+  if (!r.interrupted_in.empty()) mark_interrupted(j, r.interrupted_in);
   return j.dump() + "\n";
 }
 
@@ -141,11 +143,17 @@ PullResult run_pull(const Scene& scene_in, const PullConfig& config) {
   // Newton on the residual (docs/calibration.md §1); where its line search fails (a knit's free
   // edges: indefinite stiffness), energy descent to 10⁻⁹ of the stiffest yarn's k_s.
   options.descent_tolerance = kKnitRestTolerance * stiffest_yarn_N(scene);
+  options.stop_requested = signal_received;
   Vec q = q0;
   double previous = 0.0;
   std::vector<double> ladder{0.0};
   ladder.insert(ladder.end(), config.strains.begin(), config.strains.end());
   for (double lambda : ladder) {
+    if (signal_received()) {  // a rung whose warm start is its equilibrium asks no stop hook
+      out.interrupted_in = "the strain " + csv_number(lambda) + " rung";
+      out.complete = false;
+      break;
+    }
     // Warm start: the previous equilibrium stretched affinely from the near grip.
     const double base = mean(grips.near_x, axis), scale = (1.0 + lambda) / (1.0 + previous);
     for (int x : grips.all_x) q[x + axis] = base + (q[x + axis] - base) * scale;
@@ -154,6 +162,7 @@ PullResult run_pull(const Scene& scene_in, const PullConfig& config) {
     const EquilibriumResult r = eq.solve(q, options);
     PullPoint point{lambda, 0.0, r.residual, r.iterations + r.descent_steps};
     if (!r.converged) {
+      if (r.stopped) out.interrupted_in = "the strain " + csv_number(lambda) + " rung";
       out.complete = false;
       std::ostringstream why;
       why << "strain " << lambda << ": " << r.message;
@@ -179,6 +188,7 @@ PullResult pull_command(const Scene& scene, const PullConfig& config) {
              csv_number(p.residual_N)});
   csv.commit();
   write_file_atomically(config.out_dir / "pull.json", pull_json(scene, config, r));
+  if (!r.interrupted_in.empty()) throw Interrupted{r.interrupted_in};
   return r;
 }
 

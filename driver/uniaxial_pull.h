@@ -41,13 +41,16 @@ struct PullResult {
   double yarn_length_per_area_per_m = 0.0;           // yarn_length / (H·W)
   std::vector<PullPoint> points;                     // the rungs that converged, from λ = 0
   bool complete = true;
-  std::string message;  // why a rung did not converge
+  std::string message;         // why a rung did not converge
+  std::string interrupted_in;  // the rung a SIGINT or SIGTERM ended at its iteration ("" otherwise)
 };
 
 // Throws std::invalid_argument for a scene that is not flat or a bad ladder.
 PullResult run_pull(const Scene& scene, const PullConfig& config);
 // Runs and writes out_dir/pull.csv (strain, force_per_width_N_per_m,
-// newton_iterations, residual_N) and out_dir/pull.json.
+// newton_iterations, residual_N) and out_dir/pull.json; after a signal, the
+// rungs reached and outcome interrupted (driver/interrupted_record.h), then
+// throws Interrupted.
 PullResult pull_command(const Scene& scene, const PullConfig& config);
 
 }  // namespace wl

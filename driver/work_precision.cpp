@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "driver/experiment_meta.h"
+#include "driver/interrupted_record.h"
 #include "models/model_factory.h"
 #include "output/atomic_file.h"
 #include "output/csv_table.h"
@@ -121,6 +122,7 @@ void run_with_pilots(const WorkPrecisionConfig& cfg, const std::string& model, c
   rec.progress = cfg.progress;
   rec.speed_bound = cfg.speed_bound;
   rec.label = model + " " + integ;
+  rec.stop_at_signal = true;
   long cap = step_cap;
   for (;;) {
     opt.max_steps = cap;
@@ -244,10 +246,12 @@ Json parameters_json(const WorkPrecisionConfig& cfg) {
   return p;
 }
 
+// work_precision.json; with `interrupted_in`, of the runs a signal left (driver/interrupted_record.h).
 void write_work_precision_json(const WorkPrecisionConfig& cfg, const WorkPrecisionResult& res,
-                               const std::string& started) {
+                               const std::string& started, const std::string& interrupted_in = "") {
   Json j = Json::object();
   j.set("experiment", "work-precision");
+  if (!interrupted_in.empty()) mark_interrupted(j, interrupted_in);
   j.set("scene", scene_json(cfg.scene_path, cfg.scene_text, cfg.scene, cfg.overrides));
   j.set("published_dt_s", cfg.scene.dt_s);  // the scene's own step, marked on the chart
   j.set("parameters", parameters_json(cfg));
@@ -277,21 +281,31 @@ WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& cfg_in) {
 
   std::filesystem::create_directories(cfg.out_dir);
   CsvTable csv(cfg.out_dir / "work_precision.csv", kWorkPrecisionColumns);
-  for (const std::string& model : cfg.models) {
-    if (cfg.progress) std::fprintf(stderr, "work-precision: %s model\n", model.c_str());
-    Reference ref = load_or_compute_reference(cfg.scene, cfg.scene_text, model, cfg.overrides, cfg.reference);
-    if (!ref.meets_requirement()) {
-      const std::string note = "reference for " + model + " is at rtol " + std::to_string(ref.rtol) +
-                               ", looser than the required " + std::to_string(ref.required_rtol);
-      res.notes.push_back(note);
-      std::fprintf(stderr, "work-precision: WARNING: %s\n", note.c_str());
+  std::string stage, interrupted_in;
+  try {
+    for (const std::string& model : cfg.models) {
+      if (cfg.progress) std::fprintf(stderr, "work-precision: %s model\n", model.c_str());
+      stage = "the " + model + " reference";
+      Reference ref = load_or_compute_reference(cfg.scene, cfg.scene_text, model, cfg.overrides, cfg.reference);
+      if (!ref.meets_requirement()) {
+        const std::string note = "reference for " + model + " is at rtol " + std::to_string(ref.rtol) +
+                                 ", looser than the required " + std::to_string(ref.required_rtol);
+        res.notes.push_back(note);
+        std::fprintf(stderr, "work-precision: WARNING: %s\n", note.c_str());
+      }
+      for (const auto& [integ, adaptive] : ladders_of(cfg)) {
+        stage = "the " + model + " " + integ + (adaptive ? " rtol" : " dt") + " ladder";
+        run_ladder(cfg, model, integ, adaptive, ref, csv, res);
+      }
+      res.references.emplace(model, std::move(ref));
     }
-    for (const auto& [integ, adaptive] : ladders_of(cfg)) run_ladder(cfg, model, integ, adaptive, ref, csv, res);
-    res.references.emplace(model, std::move(ref));
+  } catch (const Interrupted&) {  // the record of the runs complete so far
+    interrupted_in = stage;
   }
   csv.commit();
   res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_work_precision_json(cfg, res, started);
+  write_work_precision_json(cfg, res, started, interrupted_in);
+  if (!interrupted_in.empty()) throw Interrupted{interrupted_in};
   return res;
 }
 

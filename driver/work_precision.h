@@ -72,7 +72,9 @@ extern const std::vector<std::string> kWorkPrecisionColumns;
 
 // Runs the experiment and writes the CSV and JSON (atomically). Throws
 // std::invalid_argument for an unknown model/integrator name (before any run)
-// and std::runtime_error when a reference cannot be computed.
+// and std::runtime_error when a reference cannot be computed. A SIGINT or SIGTERM
+// ends the run under way at its step: the files with the runs complete so far and
+// outcome interrupted (driver/interrupted_record.h), then Interrupted.
 WorkPrecisionResult run_work_precision(const WorkPrecisionConfig& config);
 
 }  // namespace wl

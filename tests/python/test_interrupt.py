@@ -63,6 +63,24 @@ except weavelab.Interrupted as e:
 """
 
 
+# Fit ends its simulation at a step and raises with fit.json's dict; the message
+# names the signal, as run's and calibrate's do, and the record names the stage.
+FIT = """
+import os, sys, tempfile, weavelab, support
+truth = support.small_scene(weavelab, size=9, duration=0.5)
+tmp = tempfile.mkdtemp()
+weavelab.run(truth, out=os.path.join(tmp, "target"))
+start = truth.copy()
+start["contact.shear_modulus_Pa"] = 1500.0
+print("running", flush=True)
+try:
+    weavelab.fit(start, os.path.join(tmp, "target"), ["contact.shear_modulus_Pa"], os.path.join(tmp, "fit"))
+except weavelab.Interrupted as e:
+    print(e, e.run["outcome"], e.run["interrupted_in"].startswith("stage 1 of the fit"), flush=True)
+    sys.exit(5)
+"""
+
+
 class Interrupt(unittest.TestCase):
     def interrupt(self, script, sig=signal.SIGINT, after=2.0):
         p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True,
@@ -87,6 +105,10 @@ class Interrupt(unittest.TestCase):
     def test_sigterm_ends_calibrate_with_its_record(self):
         self.assertEqual(self.interrupt(CALIBRATE, signal.SIGTERM, after=0.5),
                          "interrupted by SIGTERM interrupted the fit ['ok']")
+
+
+    def test_sigterm_ends_fit_and_names_the_signal(self):
+        self.assertEqual(self.interrupt(FIT, signal.SIGTERM, after=0.5), "interrupted by SIGTERM interrupted True")
 
 
 if __name__ == "__main__":
