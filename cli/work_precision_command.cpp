@@ -48,10 +48,12 @@ int run(CLI::App* wp, const WorkPrecisionArgs& a) {
   c.out_dir =
       output_folder(wp->count("--out") ? std::optional(a.experiment.out) : std::nullopt, "results/work_precision");
   return interruptible("work-precision", c.out_dir, [&] {
-    const auto r = run_work_precision(c);
-    std::cerr << "weavelab: work-precision: " << r.rows.size() << " runs in " << r.wall_s << " s; results in "
-              << c.out_dir.string() << "\n";
-    return 0;
+    return numerical_failure_is_exit_1("work-precision", [&] {  // e.g. a reference that does not reach its end
+      const auto r = run_work_precision(c);
+      std::cerr << "weavelab: work-precision: " << r.rows.size() << " runs in " << r.wall_s << " s; results in "
+                << c.out_dir.string() << "\n";
+      return 0;
+    });
   });
 }
 

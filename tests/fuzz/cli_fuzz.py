@@ -376,6 +376,7 @@ def main():
     parser.add_argument("--weavelab", required=True, help="the weavelab executable")
     parser.add_argument("--cases", type=int, default=40, help="number of cases (default 40)")
     parser.add_argument("--first", type=int, default=0, help="index of the first case (to run one case again)")
+    parser.add_argument("--indices", help="comma-separated case indices to run instead of --first/--cases")
     parser.add_argument("--seed", type=int, default=20261129, help="seed of the mutations")
     parser.add_argument("--timeout", type=float, default=60.0, help="time limit per case [s]")
     parser.add_argument("--jobs", type=int, default=1, help="cases run at once")
@@ -386,7 +387,7 @@ def main():
     start = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="weavelab_fuzz_") as workdir:
         bases = Bases(weavelab, workdir, a.timeout)
-        indices = range(a.first, a.first + a.cases)
+        indices = [int(k) for k in a.indices.split(",")] if a.indices else range(a.first, a.first + a.cases)
         with ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
             results = list(pool.map(lambda k: run_case(weavelab, k, a.seed, bases, workdir, a.timeout, a.keep, a.verbose),
                                     indices))
