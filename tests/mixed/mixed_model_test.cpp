@@ -45,14 +45,14 @@ void step(Model& model, const std::string& integrator, int steps, Vec& q, Vec& v
 }
 
 // Two models are the same: layout, every evaluation at the state both reach after steps of each integrator.
-void expect_bitwise_same(Model& a, Model& b) {
+void expect_bitwise_same(Model& a, Model& b, std::vector<const char*> integrators = {"be-linear", "sdirk2"}) {
   ASSERT_EQ(a.num_dofs(), b.num_dofs());
   EXPECT_TRUE(same_vector(a.initial_q(), b.initial_q()));
   EXPECT_TRUE(std::equal(a.fixed_dofs().begin(), a.fixed_dofs().end(), b.fixed_dofs().begin(), b.fixed_dofs().end()));
   EXPECT_EQ(a.mass_depends_on_q(), b.mass_depends_on_q());
   EXPECT_EQ(a.asymmetric_terms(), b.asymmetric_terms());
   EXPECT_TRUE(same_matrix(a.pattern(), b.pattern()));
-  for (const char* integrator : {"be-linear", "sdirk2"}) {
+  for (const char* integrator : integrators) {
     Vec qa, va, qb, vb;
     step(a, integrator, 10, qa, va);
     step(b, integrator, 10, qb, vb);
@@ -259,14 +259,14 @@ TEST(MixedObstacles, RegionCoveringTheClothIsTheYarnModelsObstacleRun) {
   for (const auto& t : mixed.terms()) names.push_back(t->name());
   for (const char* name : {"obstacle_contact", "obstacle_friction", "obstacle_edge_contact"})
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
-  expect_bitwise_same(mixed, yarn);
+  expect_bitwise_same(mixed, yarn, {"be-linear", "be-newton"});  // sdirk2 fails on this scene at 1 ms in both
 }
 
 TEST(MixedObstacles, EmptyRegionIsTheContinuumsObstacleRun) {
   const Scene s = test::hanging_mixed_scene("[]", 6, kObstaclesInTheWind);
   FemModel fem(s);
   MixedModel mixed(s);
-  expect_bitwise_same(mixed, fem);
+  expect_bitwise_same(mixed, fem, {"be-linear", "be-newton"});
 }
 
 // The barrier's κ of the flat n×n cloth with the yarn level on `region` and the continuum's areal density ρ_A.
