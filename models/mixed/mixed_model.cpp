@@ -29,9 +29,6 @@ const Scene& checked(const Scene& s) {
                      "1" + why + ": the continuum's vertices are the crossings");
   if (!s.fem.mesh_file.empty())
     throw SceneError(s.source, line_of("fem"), "fem.mesh_file", s.fem.mesh_file, "no mesh file" + why);
-  if (!s.obstacles.empty())
-    throw SceneError(s.source, s.obstacles.front().line, "obstacles", "[[obstacles]]",
-                     "no obstacles" + why + ", not carried over yet");
   if (s.self_contact.enabled)
     throw SceneError(s.source, s.self_contact.line, "self_contact.enabled", "true",
                      "false" + why + ", not carried over yet");
@@ -67,14 +64,21 @@ class ContinuumShares {
   // Per vertex: the mass an interface crossing lacks against a quarter of each continuum cell
   // around it (docs/models.md §12.4); 0 off the interface.
   const std::vector<double>& interface_mass() const { return interface_mass_; }
-
- private:
-  int i(int v) const { return v % region_.nu(); }
-  int j(int v) const { return v / region_.nu(); }
+  // Per vertex: the continuum triangles' part of its lumped mass `lumped` (the FEM's), the interface
+  // mass added: exactly `lumped` off the region (docs/models.md §12.7).
+  std::vector<double> node_mass(const std::vector<double>& lumped) const {
+    std::vector<double> m(lumped.size());
+    for (size_t k = 0; k < m.size(); ++k) m[k] = mass_share_[k] * lumped[k] + interface_mass_[k];
+    return m;
+  }
   // A triangle lies in the cell of its smallest i and j.
   double triangle(int a, int b, int c) const {
     return region_.yarn_cell(std::min({i(a), i(b), i(c)}), std::min({j(a), j(b), j(c)})) ? 0.0 : 1.0;
   }
+
+ private:
+  int i(int v) const { return v % region_.nu(); }
+  int j(int v) const { return v / region_.nu(); }
   double edge(int a, int b) const {
     if (std::abs(i(a) - i(b)) + std::abs(j(a) - j(b)) != 1)
       throw std::logic_error("mixed model: a continuum edge element is not a grid segment");
@@ -159,11 +163,19 @@ void add_interface_mass(const Scene& scene, const FemModel& fem, const WovenGrid
 
 }  // namespace
 
-std::vector<std::unique_ptr<Term>> continuum_terms(const Scene& scene, const YarnRegion& region) {
-  const FemModel fem(scene);
+ContinuumPart continuum_part(const Scene& scene, const YarnRegion& region) {
+  Scene without_obstacles = scene;  // the mixed cloth's obstacle contact is over the crossings (§12.7)
+  without_obstacles.obstacles.clear();
+  const FemModel fem(without_obstacles);
   const WovenGrid grid(scene, region);
   const ContinuumShares shares(fem, region);
-  std::vector<std::unique_ptr<Term>> out;
+  ContinuumPart part;
+  part.node_mass = shares.node_mass(fem.vertex_mass());
+  for (const auto& t : fem.mesh().triangles) {
+    if (shares.triangle(t[0], t[1], t[2]) == 0.0) continue;
+    for (int k = 0; k < 3; ++k) part.edges.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+  }
+  std::vector<std::unique_ptr<Term>>& out = part.terms;
   for (const auto& term : fem.terms()) {
     std::vector<RegionTerm::Element> elements;
     for (int e = 0; e < term->num_elements(); ++e) {
@@ -179,13 +191,13 @@ std::vector<std::unique_ptr<Term>> continuum_terms(const Scene& scene, const Yar
     if (!elements.empty()) out.push_back(std::make_unique<RegionTerm>(term->clone(), std::move(elements)));
   }
   add_interface_mass(scene, fem, grid, shares.interface_mass(), out);
-  return out;
+  return part;
 }
 
 MixedModel::MixedModel(const Scene& scene) : MixedModel(checked(scene), region_of(scene)) {}
 
 MixedModel::MixedModel(const Scene& scene, const YarnRegion& region)
-    : YarnModel(scene, region, continuum_terms(scene, region)), rectangles_(rectangles_text(scene.mixed.yarn_region)) {
+    : YarnModel(scene, region, continuum_part(scene, region)), rectangles_(rectangles_text(scene.mixed.yarn_region)) {
   for (int k = 0; k < grid().num_nodes(); ++k) sliding_ = sliding_ || is_dof(grid().dofs(k).u);
 }
 

@@ -15,7 +15,7 @@ namespace wl {
 class MixedModel : public YarnModel {
  public:
   // Throws SceneError (located) for a scene the mixed model cannot take: no
-  // [mixed] table, [fem] stride ≠ 1 or a mesh file, obstacles, self-contact,
+  // [mixed] table, [fem] stride ≠ 1 or a mesh file, self-contact,
   // time.exact_contact_jacobian.
   explicit MixedModel(const Scene& scene);
   std::unique_ptr<Model> clone() const override { return std::make_unique<MixedModel>(*this); }
@@ -33,7 +33,8 @@ class MixedModel : public YarnModel {
 };
 
 // The continuum's terms on the mixed cloth's DoFs (the grid over `region`):
-// each element with its continuum share (docs/models.md §12.3), the terms without one left out.
-std::vector<std::unique_ptr<Term>> continuum_terms(const Scene& scene, const YarnRegion& region);
+// each element with its continuum share (docs/models.md §12.3), the terms without one left out;
+// per crossing the mass the continuum lumps on it, and its triangles' edges (§12.7).
+ContinuumPart continuum_part(const Scene& scene, const YarnRegion& region);
 
 }  // namespace wl

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "models/common/handle_spring.h"
@@ -37,9 +38,9 @@ const char* pattern_name(Pattern::Kind k) {
 }  // namespace
 
 YarnModel::YarnModel(const Scene& scene)
-    : YarnModel(scene, YarnRegion::everything(scene.nodes_u(), scene.nodes_v()), {}) {}
+    : YarnModel(scene, YarnRegion::everything(scene.nodes_u(), scene.nodes_v()), ContinuumPart{}) {}
 
-YarnModel::YarnModel(const Scene& scene, const YarnRegion& region, std::vector<std::unique_ptr<Term>> other_terms)
+YarnModel::YarnModel(const Scene& scene, const YarnRegion& region, ContinuumPart continuum)
     : scene_(scene), region_(region), grid_(scene, region) {
   num_dofs_ = grid_.num_dofs();
   constants_ = grid_.constants();
@@ -73,9 +74,9 @@ YarnModel::YarnModel(const Scene& scene, const YarnRegion& region, std::vector<s
   if (on.handles) add_handles();
   if (scene_.yarn_viscosity_Pa_s > 0.0) add_damping();
   add_pins();
-  add_obstacles();
+  for (auto& term : continuum.terms) terms_.push_back(std::move(term));
+  add_obstacles(continuum);
   add_self_contact();
-  for (auto& term : other_terms) terms_.push_back(std::move(term));
   if (normals_ && scene.exact_contact_jacobian) {
     normals_->compute(q0_);
     normals_->compute_gradient(q0_);  // the structure of ∂F_n/∂q, the same at every state
@@ -345,22 +346,28 @@ void YarnModel::add_pins() {
 }
 
 // Node–obstacle contact and friction at every crossing, segment–edge contact on
-// every yarn segment (docs/models.md §3.11):
-// node spacing L, a node's mass at most (ρ_warp + ρ_weft)·L.
-void YarnModel::add_obstacles() {
+// every yarn segment of the yarn level and every edge of the continuum's triangles
+// (docs/models.md §3.11, §12.7): node spacing L; κ from the heaviest crossing, a
+// crossing weighing at most its yarn share of (2 max ρ)·L plus what the continuum lumps on it.
+void YarnModel::add_obstacles(const ContinuumPart& continuum) {
   if (scene_.obstacles.empty()) return;
-  std::vector<int> node_x;
-  for (int k = 0; k < grid_.num_nodes(); ++k) node_x.push_back(grid_.dofs(k).x);
   double rho = 0.0;
   for (const auto& [name, y] : scene_.yarn_types) rho = std::max(rho, y.density_kg_per_m);
-  const double L = scene_.spacing_m;
-  std::vector<std::array<int, 2>> segments;  // the yarn segments between neighbouring crossings
+  const double L = scene_.spacing_m, crossing_mass = 2.0 * rho * L;
+  std::vector<int> node_x(grid_.num_nodes());
+  double heaviest = 0.0;
+  std::set<std::array<int, 2>> segments(continuum.edges.begin(), continuum.edges.end());  // each once, ordered
   for (int j = 0; j < grid_.nv(); ++j)
     for (int i = 0; i < grid_.nu(); ++i) {
-      if (i + 1 < grid_.nu()) segments.push_back({grid_.node(i, j), grid_.node(i + 1, j)});
-      if (j + 1 < grid_.nv()) segments.push_back({grid_.node(i, j), grid_.node(i, j + 1)});
+      const int k = grid_.node(i, j);
+      node_x[k] = grid_.dofs(k).x;
+      const double lumped = continuum.node_mass.empty() ? 0.0 : continuum.node_mass[k];
+      heaviest = std::max(heaviest, region_.crossing_share(i, j) * crossing_mass + lumped);
+      if (i + 1 < grid_.nu() && region_.segment_share(i, j, true) > 0.0) segments.insert({k, grid_.node(i + 1, j)});
+      if (j + 1 < grid_.nv() && region_.segment_share(i, j, false) > 0.0) segments.insert({k, grid_.node(i, j + 1)});
     }
-  obstacles_ = ObstacleContact(scene_, obstacle_contact_rule(scene_, L, 2.0 * rho * L), node_x, segments, q0_, terms_);
+  obstacles_ = ObstacleContact(scene_, obstacle_contact_rule(scene_, L, heaviest), node_x,
+                               {segments.begin(), segments.end()}, q0_, terms_);
 }
 
 // Cloth–cloth contact over the crossing grid, each cell split along

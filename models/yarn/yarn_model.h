@@ -16,6 +16,14 @@
 
 namespace wl {
 
+// What a mixed cloth's continuum brings to the yarn level's DoFs (docs/models.md §12): its terms,
+// and what the obstacle contact over the crossings needs of it (§12.7).
+struct ContinuumPart {
+  std::vector<std::unique_ptr<Term>> terms;
+  std::vector<double> node_mass;          // per crossing: the mass the continuum lumps on it [kg]
+  std::vector<std::array<int, 2>> edges;  // the crossings a continuum triangle's edge joins
+};
+
 class YarnModel : public TermModel, public SlidingCoordinates {
  public:
   explicit YarnModel(const Scene& scene);
@@ -55,9 +63,9 @@ class YarnModel : public TermModel, public SlidingCoordinates {
   // The yarn level of a mixed cloth (docs/models.md §12): sliding only at the
   // region's yarn-interior crossings, every element's coefficient times its yarn
   // share (elements of share 0 and terms without elements are not built), and
-  // `other_terms` (on the same DoFs) after the yarn level's. A scene with obstacles,
-  // self-contact or exact_contact_jacobian is the caller's to refuse.
-  YarnModel(const Scene& scene, const YarnRegion& region, std::vector<std::unique_ptr<Term>> other_terms);
+  // the continuum's terms (on the same DoFs) after the yarn level's, before the
+  // obstacles'. A scene with self-contact or exact_contact_jacobian is the caller's to refuse.
+  YarnModel(const Scene& scene, const YarnRegion& region, ContinuumPart continuum);
 
   // The contact normals and F_n at q (docs/models.md §3.6), handed to the terms in ctx.
   void prepare_auxiliary(double t, const Vec& q, const Vec& v, EvalContext& ctx) override;
@@ -93,7 +101,7 @@ class YarnModel : public TermModel, public SlidingCoordinates {
   void add_handles();
   void add_damping();
   void add_pins();
-  void add_obstacles();
+  void add_obstacles(const ContinuumPart& continuum);
   void add_self_contact();
 
   std::array<int, 8> segment_stencil(const Segment& s) const;
