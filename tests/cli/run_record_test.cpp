@@ -1,16 +1,15 @@
 // A run's record stays true when the run is interrupted (SIGINT, SIGTERM,
 // broken pipe, kill -9), when a second run aims at its folder, and when a run
 // reuses an old folder.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <thread>
 
 #include "tests/output/output_test_util.h"
+#include "tests/support/child_process.h"
 
 namespace wl {
 namespace {
@@ -18,6 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::read_text;
 using test::ScratchDir;
+using test::wait_exit;
 
 // A 5×5 hanging cloth: quick steps, so a long duration runs until a signal ends it.
 std::string scene_text(double duration_s) {
@@ -68,25 +68,7 @@ class RunRecord : public ::testing::Test {
   }
   // Starts `weavelab ARGS...` with stdout and stderr to `log` (or stderr to `stderr_fd` when ≥ 0).
   pid_t spawn(std::vector<std::string> args, int stderr_fd = -1) {
-    args.insert(args.begin(), WEAVELAB_CLI);
-    const std::string log = (dir_ / "log.txt").string();
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) {  // only async-signal-safe calls until exec
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      ::dup2(fd, 1);
-      ::dup2(stderr_fd >= 0 ? stderr_fd : fd, 2);
-      ::execv(argv[0], argv.data());
-      ::_exit(127);
-    }
-    return pid;
-  }
-  static int wait_exit(pid_t pid) {
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 1000 + WTERMSIG(status) : -1;
+    return test::spawn_logged(WEAVELAB_CLI, std::move(args), (dir_ / "log.txt").string(), stderr_fd);
   }
   // Waits until the run has written at least `rows` metrics rows (at most 60 s).
   static void wait_for_rows(const fs::path& out, int rows) {

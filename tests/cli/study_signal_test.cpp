@@ -4,11 +4,8 @@
 // temporary file), the exit code is 128 + the signal and the message names the
 // signal, the stage and the folder (before, the default action killed them
 // with .part files and no JSON).
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -16,6 +13,7 @@
 #include <thread>
 
 #include "tests/output/output_test_util.h"
+#include "tests/support/child_process.h"
 
 namespace wl {
 namespace {
@@ -23,6 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::read_text;
 using test::ScratchDir;
+using test::wait_exit;
 
 // A size×size hanging cloth whose 100 s outlast any test.
 std::string hanging_text(int size) {
@@ -73,25 +72,7 @@ class StudySignal : public ::testing::TestWithParam<StudyCase> {
   }
   // Starts `weavelab ARGS...` with stdout and stderr to the log; returns its pid.
   pid_t spawn(std::vector<std::string> args) {
-    args.insert(args.begin(), WEAVELAB_CLI);
-    const std::string log = (dir_ / "log.txt").string();
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid == 0) {  // only async-signal-safe calls until exec
-      const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-      ::execv(argv[0], argv.data());
-      ::_exit(127);
-    }
-    return pid;
-  }
-  static int wait_exit(pid_t pid) {
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 1000 + WTERMSIG(status) : -1;
+    return test::spawn_logged(WEAVELAB_CLI, std::move(args), (dir_ / "log.txt").string());
   }
   std::string log() { return read_text(dir_ / "log.txt"); }
 
